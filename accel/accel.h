@@ -1,0 +1,100 @@
+#pragma once
+// The one query API every acceleration structure offers. A structure never sees primitives: it
+// is built from their bounds, and traversal calls the caller's leaf callback with the caller's
+// primitive id. Counting compiles away unless a TraversalStats is passed.
+
+#include <concepts>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+#include "intersect/bounds.h"
+#include "intersect/ray.h"
+
+namespace rtlab {
+
+/// Machine-independent traversal counters (summed over the rays traced with it).
+struct TraversalStats {
+    std::uint64_t rays = 0;   ///< rays started
+    std::uint64_t nodes = 0;  ///< inner and leaf nodes (kd, BVH) or cells (grid) visited
+    std::uint64_t prims = 0;  ///< leaf callbacks, i.e. ray-primitive tests
+
+    void count_ray() { ++rays; }
+    void count_node() { ++nodes; }
+    void count_prim() { ++prims; }
+    TraversalStats& operator+=(const TraversalStats& o) {
+        rays += o.rays;
+        nodes += o.nodes;
+        prims += o.prims;
+        return *this;
+    }
+};
+
+/// The default: no counting; every call compiles to nothing.
+struct NoStats {
+    void count_ray() {}
+    void count_node() {}
+    void count_prim() {}
+};
+
+/// Either NoStats or TraversalStats (passed by reference to traversal).
+template <class S>
+concept StatsSink = requires(S& s) {
+    s.count_ray();
+    s.count_node();
+    s.count_prim();
+};
+
+/// Closest-hit leaf callback: tests primitive `id`; on a hit inside [ray.tmin, ray.tmax] it records
+/// the hit, shrinks ray.tmax to the hit's t and returns true.
+template <class F>
+concept ClosestHitFn = requires(F& f, std::uint32_t id, Rayf& ray) {
+    { f(id, ray) } -> std::convertible_to<bool>;
+};
+
+/// Any-hit leaf callback: returns true when primitive `id` blocks the ray's window; the first
+/// true ends traversal.
+template <class F>
+concept AnyHitFn = requires(F& f, std::uint32_t id, const Rayf& ray) {
+    { f(id, ray) } -> std::convertible_to<bool>;
+};
+
+/// Build-time only: the part of primitive `id` inside `box`, as a (possibly empty) box. Gives
+/// kd-trees "perfect splits" (Havran; Wald & Havran 2006); without it they use the clipped
+/// bounds.
+using ClipFn = std::function<Bounds3f(std::uint32_t id, const Bounds3f& box)>;
+
+/// What a builder receives: one box per primitive (index = primitive id) and an optional clip.
+struct BuildInput {
+    std::span<const Bounds3f> bounds;  ///< primitive bounds; must outlive the build call only
+    ClipFn clip;                       ///< optional exact clipping for perfect splits
+};
+
+/// Size and quality figures of a built structure, for reports.
+struct AccelInfo {
+    std::uint64_t nodes = 0;      ///< all nodes (grid: cells)
+    std::uint64_t leaves = 0;     ///< leaves (grid: non-empty cells)
+    std::uint32_t max_depth = 0;  ///< deepest leaf (root = 0; grid: 0)
+    std::uint64_t bytes = 0;      ///< memory of nodes, index lists and cells
+    double bytes_per_prim = 0;    ///< bytes / primitive count
+    double sah_cost = 0;          ///< the structure's own cost-model value (documented per kind)
+    double refs_per_prim = 0;     ///< primitive references / primitive count (BVH: 1)
+};
+
+/// What every structure offers. `validate()` returns an empty string when every invariant holds,
+/// else a description of the first violation.
+template <class A>
+concept Accel = requires(const A& a, Rayf& ray, const Rayf& cray, const BuildInput& in,
+                         const typename A::Config& cfg, TraversalStats& st) {
+    { A::build(in, cfg) } -> std::same_as<A>;
+    { a.intersect(ray, [](std::uint32_t, Rayf&) { return false; }) } -> std::same_as<bool>;
+    { a.intersect(ray, [](std::uint32_t, Rayf&) { return false; }, st) } -> std::same_as<bool>;
+    { a.occluded(cray, [](std::uint32_t, const Rayf&) { return false; }) } -> std::same_as<bool>;
+    { a.occluded(cray, [](std::uint32_t, const Rayf&) { return false; }, st) } -> std::same_as<bool>;
+    { a.bounds() } -> std::same_as<Bounds3f>;
+    { a.info() } -> std::same_as<AccelInfo>;
+    { a.validate() } -> std::same_as<std::string>;
+};
+
+}  // namespace rtlab

@@ -1,0 +1,74 @@
+#pragma once
+// Ray-AABB slab test (Kay & Kajiya 1986; near/far planes chosen by direction sign as in Williams
+// et al. 2005, "An efficient and robust ray-box intersection algorithm"). The reciprocal
+// direction is precomputed once per ray: a zero component gives +-inf, and the comparisons below
+// are written so that the 0 * inf = NaN of an origin lying exactly on a face plane means "inside
+// that slab" (the box is closed) instead of leaking NaN. Cost: 6 mul, 6 sub, 12 compares.
+// The robust variant pads the far distance by 1 + 2*gamma(3) (Ize 2013, "Robust BVH Ray
+// Traversal", JCGT 2(2); the bound as in pbrt-v3), so rounding never culls a box the exact ray
+// touches.
+
+#include <cmath>
+#include <limits>
+
+#include "intersect/bounds.h"
+#include "intersect/ray.h"
+
+namespace rtlab {
+
+/// gamma(n) = n*eps / (1 - n*eps): the relative error bound of n rounded operations (Higham).
+template <class T>
+constexpr T gamma_bound(int n) {
+    const T e = std::numeric_limits<T>::epsilon() * T(0.5);
+    return static_cast<T>(n) * e / (T(1) - static_cast<T>(n) * e);
+}
+
+/// A ray prepared for many slab tests: origin, reciprocal direction and direction signs.
+template <class T>
+struct SlabRay {
+    Vec3<T> org;
+    Vec3<T> inv_dir;
+    bool neg[3];  ///< dir component's sign bit is set (so the near plane is the box's hi side)
+
+    /// Prepares r; a zero component of r.dir becomes +-inf in inv_dir by IEEE division.
+    explicit SlabRay(const Ray<T>& r)
+        : org(r.org)
+        , inv_dir(T(1) / r.dir.x, T(1) / r.dir.y, T(1) / r.dir.z)
+        , neg{std::signbit(r.dir.x), std::signbit(r.dir.y), std::signbit(r.dir.z)} {}
+};
+
+/// Clips [t0, t1] to the slabs of the box [lo, hi]; returns false when the interval empties.
+/// On true, t0/t1 hold the clipped interval (entry and exit). IsRobust pads the far distance.
+template <bool IsRobust = false, class T>
+bool clip_slabs(const Vec3<T>& lo, const Vec3<T>& hi, const SlabRay<T>& r, T& t0, T& t1) {
+    for (std::size_t a = 0; a < 3; ++a) {
+        const T near_plane = r.neg[a] ? hi[a] : lo[a];
+        const T far_plane = r.neg[a] ? lo[a] : hi[a];
+        const T tn = (near_plane - r.org[a]) * r.inv_dir[a];
+        T tf = (far_plane - r.org[a]) * r.inv_dir[a];
+        if constexpr (IsRobust) {
+            tf *= T(1) + T(2) * gamma_bound<T>(3);
+        }
+        // Written as "t > t0 ? t : t0" so a NaN (origin on the plane, zero direction) leaves the
+        // interval unchanged: such a ray lies in the face plane and thus inside the closed slab.
+        t0 = tn > t0 ? tn : t0;
+        t1 = tf < t1 ? tf : t1;
+        if (t0 > t1) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/// True when the ray's window [tmin, tmax] meets the closed box b; tnear receives the entry t.
+template <bool IsRobust = false, class T>
+bool slab_hit(const Bounds3<T>& b, const SlabRay<T>& r, T tmin, T tmax, T& tnear) {
+    T t0 = tmin, t1 = tmax;
+    if (!clip_slabs<IsRobust>(b.lo, b.hi, r, t0, t1)) {
+        return false;
+    }
+    tnear = t0;
+    return true;
+}
+
+}  // namespace rtlab
