@@ -1,0 +1,68 @@
+#pragma once
+// Geometric ray-sphere test with early outs (seed 000, "Schnitt Strahl-Kugel"; also Haines 1989
+// in Glassner, "An Introduction to Ray Tracing"). Generalised to non-unit directions by dividing
+// by a = d.d. No epsilon: the seed's `m^2 - r^2 > eps` choice is replaced by taking the nearest
+// root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root.
+
+#include <cmath>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+#include "intersect/sphere/sphere.h"
+
+namespace rtlab {
+
+/// Geometric method: vector to the centre, its projection on the ray, early rejects.
+template <class T>
+struct SphereGeometric {
+    using Scalar = T;
+    using Shape = Sphere<T>;
+    using Prepared = PreparedSphere<T>;
+    static constexpr std::string_view name = "geometric";
+
+    /// Copies centre and radius and squares the radius.
+    static Prepared prepare(const Shape& s) { return detail::prepare_sphere(s); }
+    /// Conservative box around the sphere.
+    static Bounds3<T> bounds(const Prepared& p) { return detail::sphere_bounds(p); }
+
+    /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
+    static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
+        const Vec3<T> m = p.center - ray.org;  // origin -> centre
+        const T a = dot(ray.dir, ray.dir);
+        const T b = dot(m, ray.dir);           // a * (projection of the centre on the ray)
+        const T c = dot(m, m) - p.radius2;     // > 0: origin outside
+        const T disc = b * b - a * c;          // a^2 * squared half chord
+        if (disc < T(0)) {
+            return std::nullopt;
+        }
+        const T s = std::sqrt(disc);
+        return std::pair<T, T>{(b - s) / a, (b + s) / a};
+    }
+
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
+    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
+        const Vec3<T> m = p.center - ray.org;
+        const T b = dot(m, ray.dir);
+        const T c = dot(m, m) - p.radius2;
+        // Early out of the seed: origin outside and the centre behind means both roots are < 0;
+        // only valid when the window starts at or after the origin.
+        if (c >= T(0) && b <= T(0) && ray.tmin >= T(0)) {
+            return std::nullopt;
+        }
+        const T a = dot(ray.dir, ray.dir);
+        const T disc = b * b - a * c;
+        if (disc < T(0)) {
+            return std::nullopt;
+        }
+        const T s = std::sqrt(disc);
+        return detail::pick_root(std::optional<std::pair<T, T>>{{(b - s) / a, (b + s) / a}}, ray);
+    }
+
+    /// True when the sphere surface is hit inside [tmin, tmax].
+    static bool occluded(const Prepared& p, const Ray<T>& ray) {
+        return intersect(p, ray).has_value();
+    }
+};
+
+}  // namespace rtlab

@@ -1,0 +1,79 @@
+#pragma once
+// Sphere: the shape every sphere intersection method prepares, plus the helpers they share.
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "intersect/bounds.h"
+#include "intersect/hit.h"
+#include "intersect/ray.h"
+
+namespace rtlab {
+
+/// A sphere of the given centre and radius (radius > 0).
+template <class T>
+struct Sphere {
+    Vec3<T> center;
+    T radius = 1;
+};
+
+using Spheref = Sphere<float>;
+using Sphered = Sphere<double>;
+
+/// What every sphere method prepares: the centre and the radius with its square.
+template <class T>
+struct PreparedSphere {
+    Vec3<T> center;
+    T radius = 1;
+    T radius2 = 1;
+};
+
+namespace detail {
+
+/// Prepared form shared by the sphere methods.
+template <class T>
+PreparedSphere<T> prepare_sphere(const Sphere<T>& s) {
+    return {s.center, s.radius, s.radius * s.radius};
+}
+
+/// Box around the sphere, each bound moved one ulp outwards so rounding of centre +- radius can
+/// never cut the sphere.
+template <class T>
+Bounds3<T> sphere_bounds(const PreparedSphere<T>& p) {
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    Bounds3<T> b;
+    for (std::size_t k = 0; k < 3; ++k) {
+        b.lo[k] = std::nextafter(p.center[k] - p.radius, -inf);
+        b.hi[k] = std::nextafter(p.center[k] + p.radius, inf);
+    }
+    return b;
+}
+
+/// The nearer of two sorted roots that lies in [tmin, tmax]; the leaving root when the entering
+/// one is before tmin (origin inside the sphere).
+template <class T>
+std::optional<PrimHit<T>> pick_root(const std::optional<std::pair<T, T>>& roots,
+                                    const Ray<T>& ray) {
+    if (!roots) {
+        return std::nullopt;
+    }
+    if (roots->first >= ray.tmin && roots->first <= ray.tmax) {
+        return PrimHit<T>{roots->first};
+    }
+    if (roots->second >= ray.tmin && roots->second <= ray.tmax) {
+        return PrimHit<T>{roots->second};
+    }
+    return std::nullopt;
+}
+
+}  // namespace detail
+
+/// Unit outward normal of a sphere at a point on (or near) its surface.
+template <class T>
+Vec3<T> sphere_normal(const PreparedSphere<T>& p, const Vec3<T>& point) {
+    return normalize(point - p.center);
+}
+
+}  // namespace rtlab

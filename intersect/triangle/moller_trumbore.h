@@ -1,0 +1,79 @@
+#pragma once
+// Möller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection" (JGT 2(1)): Cramer's
+// rule on the edge vectors, two-sided (no culling), divide before the u/v tests. Cost per test:
+// 2 cross, 4 dot, 1 division, 6 subtractions for the edges; storage: the three vertices.
+// Epsilon policy: none. Only det == 0 (ray parallel to the plane, or degenerate triangle) is
+// rejected; edges are inclusive (u, v >= 0, u + v <= 1). Every test is written so that a NaN
+// fails it, so a tiny det (inv = inf) never yields a hit or a NaN.
+
+#include "intersect/hit.h"
+#include "intersect/method.h"
+#include "intersect/ray.h"
+#include "intersect/triangle/triangle.h"
+
+#include <optional>
+#include <string_view>
+
+namespace rtlab {
+
+/// Möller–Trumbore ray/triangle test, templated on the scalar type.
+template <class T>
+struct MollerTrumbore {
+    using Scalar = T;
+    using Shape = Triangle<T>;
+
+    /// The vertices as given; a zero-area triangle is stored collapsed to one point (det == 0).
+    struct Prepared {
+        Vec3<T> p0, p1, p2;
+    };
+
+    static constexpr std::string_view name = "moller_trumbore";
+
+    /// Store the vertices (collapsed to p0 when the triangle has zero area).
+    static Prepared prepare(const Shape& s) {
+        if (is_degenerate(s.p0, s.p1, s.p2)) {
+            return {s.p0, s.p0, s.p0};
+        }
+        return {s.p0, s.p1, s.p2};
+    }
+
+    /// Box around the three vertices.
+    static Bounds3<T> bounds(const Prepared& p) { return triangle_bounds(p.p0, p.p1, p.p2); }
+
+    /// Hit with t in [ray.tmin, ray.tmax] and barycentrics u (p1), v (p2), or nullopt.
+    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
+        const Vec3<T> e1 = p.p1 - p.p0;
+        const Vec3<T> e2 = p.p2 - p.p0;
+        const Vec3<T> pvec = cross(ray.dir, e2);
+        const T det = dot(e1, pvec);
+        if (det == T(0)) {
+            return std::nullopt;
+        }
+        const T inv_det = T(1) / det;
+        const Vec3<T> tvec = ray.org - p.p0;
+        const T u = dot(tvec, pvec) * inv_det;
+        if (!(u >= T(0) && u <= T(1))) {
+            return std::nullopt;
+        }
+        const Vec3<T> qvec = cross(tvec, e1);
+        const T v = dot(ray.dir, qvec) * inv_det;
+        if (!(v >= T(0) && u + v <= T(1))) {
+            return std::nullopt;
+        }
+        const T t = dot(e2, qvec) * inv_det;
+        if (!in_window(t, ray)) {
+            return std::nullopt;
+        }
+        return PrimHit<T>{t, u, v};
+    }
+
+    /// True when intersect() would report a hit.
+    static bool occluded(const Prepared& p, const Ray<T>& ray) {
+        return intersect(p, ray).has_value();
+    }
+};
+
+static_assert(IntersectionMethod<MollerTrumbore<float>>);
+static_assert(IntersectionMethod<MollerTrumbore<double>>);
+
+}  // namespace rtlab

@@ -1,0 +1,69 @@
+#pragma once
+// Segura & Feito 2001, "Algorithms to test ray-triangle intersection. Comparative study" (WSCG):
+// signs of signed volumes only, no hit point. The line test uses the three tetrahedra spanned by
+// the ray and each edge; the window test uses the signed volumes of the segment ends
+// org + tmin dir and org + tmax dir against the triangle (the ray variant, sign of dot(n, dir),
+// when that end is infinite). Cost: 3 cross and 5 dot products, no division.
+// Epsilon policy: none. Zero volumes count as touching (inclusive edges and window ends); a ray
+// in the triangle's plane (all volumes zero) and a degenerate triangle (n = 0) are misses.
+
+#include "intersect/method.h"
+#include "intersect/ray.h"
+#include "intersect/triangle/triangle.h"
+
+#include <string_view>
+
+namespace rtlab {
+
+/// Segura–Feito hit/no-hit ray/triangle test (OcclusionMethod only), templated on the scalar.
+template <class T>
+struct SeguraFeito {
+    using Scalar = T;
+    using Shape = Triangle<T>;
+
+    /// The vertices and the (unnormalised) normal (p1 - p0) x (p2 - p0); n = 0 when degenerate.
+    struct Prepared {
+        Vec3<T> p0, p1, p2;
+        Vec3<T> n;
+    };
+
+    static constexpr std::string_view name = "segura_feito";
+
+    /// Store the vertices and the normal.
+    static Prepared prepare(const Shape& s) {
+        return {s.p0, s.p1, s.p2, cross(s.p1 - s.p0, s.p2 - s.p0)};
+    }
+
+    /// Box around the three vertices.
+    static Bounds3<T> bounds(const Prepared& p) { return triangle_bounds(p.p0, p.p1, p.p2); }
+
+    /// True when the ray meets the triangle at some t in [ray.tmin, ray.tmax].
+    static bool occluded(const Prepared& p, const Ray<T>& ray) {
+        // Window ends: signed volume of each end against the triangle's plane.
+        const Vec3<T> a = ray.org + ray.dir * ray.tmin;
+        const T side_a = dot(p.n, a - p.p0);
+        const Vec3<T> b = ray.org + ray.dir * ray.tmax;
+        const T side_b = is_finite(b) ? dot(p.n, b - p.p0) : dot(p.n, ray.dir);
+        if (side_a == T(0) && side_b == T(0)) {
+            return false;  // coplanar segment or degenerate triangle
+        }
+        if (!((side_a <= T(0) && side_b >= T(0)) || (side_a >= T(0) && side_b <= T(0)))) {
+            return false;  // both ends strictly on one side (or NaN)
+        }
+        // Line test: the tetrahedra (a, a + dir, pi, pj) for the three edges share one sign.
+        const Vec3<T> q0 = p.p0 - a;
+        const Vec3<T> q1 = p.p1 - a;
+        const Vec3<T> q2 = p.p2 - a;
+        const T s01 = dot(ray.dir, cross(q0, q1));
+        const T s12 = dot(ray.dir, cross(q1, q2));
+        const T s20 = dot(ray.dir, cross(q2, q0));
+        const bool any_neg = s01 < T(0) || s12 < T(0) || s20 < T(0);
+        const bool any_pos = s01 > T(0) || s12 > T(0) || s20 > T(0);
+        return any_neg != any_pos;  // all >= 0 or all <= 0, and not all zero
+    }
+};
+
+static_assert(OcclusionMethod<SeguraFeito<float>>);
+static_assert(OcclusionMethod<SeguraFeito<double>>);
+
+}  // namespace rtlab
