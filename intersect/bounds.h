@@ -2,9 +2,9 @@
 // Bounds3: an axis-aligned box. The default box is empty (lo = +inf, hi = -inf), so extending it
 // by anything gives that thing.
 
-#include <limits>
-
 #include "intersect/vec.h"
+
+#include <limits>
 
 namespace rtlab {
 

@@ -2,13 +2,13 @@
 // The intersection-method concept: a stateless struct that prepares a shape once and then tests
 // rays against the prepared form. The same shape can be tested by every method of its kind.
 
-#include <concepts>
-#include <optional>
-#include <string_view>
-
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
 #include "intersect/ray.h"
+
+#include <concepts>
+#include <optional>
+#include <string_view>
 
 namespace rtlab {
 
@@ -25,8 +25,8 @@ concept OcclusionMethod = requires(const typename M::Shape& s,
 
 /// A method that also reports the nearest hit parameter t in [tmin, tmax] (plus u, v).
 template <class M>
-concept IntersectionMethod = OcclusionMethod<M> && requires(const typename M::Prepared& p,
-                                                            const Ray<typename M::Scalar>& r) {
+concept IntersectionMethod = OcclusionMethod<M> &&
+    requires(const typename M::Prepared& p, const Ray<typename M::Scalar>& r) {
     { M::intersect(p, r) } -> std::same_as<std::optional<PrimHit<typename M::Scalar>>>;
 };
 

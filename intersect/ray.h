@@ -1,9 +1,9 @@
 #pragma once
 // Ray: origin, direction (not necessarily unit) and the parametric window [tmin, tmax].
 
-#include <limits>
-
 #include "intersect/vec.h"
+
+#include <limits>
 
 namespace rtlab {
 
@@ -29,12 +29,15 @@ struct Ray {
 using Rayf = Ray<float>;
 using Rayd = Ray<double>;
 
-/// True when the ray can be traced: finite origin and direction, non-zero direction, and a window
-/// with tmin <= tmax that is not NaN. Traversal rejects other rays before touching any node.
+/// True when the ray can be traced: finite origin and direction, a direction with at least one
+/// normal (not denormal, not zero) component, and a window with tmin <= tmax that is not NaN.
+/// Traversal rejects other rays before touching any node. Why no denormal-only directions: their
+/// reciprocal overflows to infinity, so slab tests would treat the ray as parallel to every axis.
 template <class T>
 bool is_valid(const Ray<T>& r) {
-    return is_finite(r.org) && is_finite(r.dir) && length_squared(r.dir) > T(0) &&
-           !(r.tmin != r.tmin) && !(r.tmax != r.tmax) && r.tmin <= r.tmax;
+    return is_finite(r.org) && is_finite(r.dir) &&
+           max_component(abs(r.dir)) >= std::numeric_limits<T>::min() && !(r.tmin != r.tmin) &&
+           !(r.tmax != r.tmax) && r.tmin <= r.tmax;
 }
 
 }  // namespace rtlab

@@ -1,12 +1,13 @@
 // Vec3, Ray, Bounds3 and Hit: the invariants everything else relies on.
-#include <catch2/catch.hpp>
-#include <cmath>
-#include <limits>
-
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
 #include "intersect/ray.h"
 #include "intersect/vec.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
 
 using namespace rtlab;
 
@@ -42,7 +43,9 @@ TEST_CASE("ray validity rejects what traversal must never see", "[intersect][voc
     const float inf = std::numeric_limits<float>::infinity();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     CHECK(is_valid(Rayf{{0, 0, 0}, {0, 0, 1}}));
-    CHECK(is_valid(Rayf{{0, 0, 0}, {1e-40f, 0, 0}}));  // denormal direction is still a direction
+    CHECK(is_valid(Rayf{{0, 0, 0}, {1, 1e-40f, 0}}));        // a denormal component is fine
+    CHECK(is_valid(Rayf{{0, 0, 0}, {1e-20f, 0, 0}}));        // tiny, but 1/d is finite
+    CHECK_FALSE(is_valid(Rayf{{0, 0, 0}, {1e-40f, 0, 0}}));  // 1/d overflows: rejected
     CHECK_FALSE(is_valid(Rayf{{0, 0, 0}, {0, 0, 0}}));
     CHECK_FALSE(is_valid(Rayf{{nan, 0, 0}, {0, 0, 1}}));
     CHECK_FALSE(is_valid(Rayf{{0, 0, 0}, {inf, 0, 1}}));

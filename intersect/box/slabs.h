@@ -4,15 +4,15 @@
 // direction is precomputed once per ray: a zero component gives +-inf, and the comparisons below
 // are written so that the 0 * inf = NaN of an origin lying exactly on a face plane means "inside
 // that slab" (the box is closed) instead of leaking NaN. Cost: 6 mul, 6 sub, 12 compares.
-// The robust variant pads the far distance by 1 + 2*gamma(3) (Ize 2013, "Robust BVH Ray
-// Traversal", JCGT 2(2); the bound as in pbrt-v3), so rounding never culls a box the exact ray
-// touches.
-
-#include <cmath>
-#include <limits>
+// The robust variant widens the near and far distances outward by a relative 2*gamma(3) (Ize
+// 2013, "Robust BVH Ray Traversal", JCGT 2(2); the bound as in pbrt-v3), so rounding never culls
+// a box the exact ray touches, for any window [tmin, tmax].
 
 #include "intersect/bounds.h"
 #include "intersect/ray.h"
+
+#include <cmath>
+#include <limits>
 
 namespace rtlab {
 
@@ -38,16 +38,24 @@ struct SlabRay {
 };
 
 /// Clips [t0, t1] to the slabs of the box [lo, hi]; returns false when the interval empties.
-/// On true, t0/t1 hold the clipped interval (entry and exit). IsRobust pads the far distance.
+/// On true, t0/t1 hold the clipped interval (entry and exit). IsRobust widens both distances
+/// outward.
 template <bool IsRobust = false, class T>
 bool clip_slabs(const Vec3<T>& lo, const Vec3<T>& hi, const SlabRay<T>& r, T& t0, T& t1) {
     for (std::size_t a = 0; a < 3; ++a) {
         const T near_plane = r.neg[a] ? hi[a] : lo[a];
         const T far_plane = r.neg[a] ? lo[a] : hi[a];
-        const T tn = (near_plane - r.org[a]) * r.inv_dir[a];
+        T tn = (near_plane - r.org[a]) * r.inv_dir[a];
         T tf = (far_plane - r.org[a]) * r.inv_dir[a];
         if constexpr (IsRobust) {
-            tf *= T(1) + T(2) * gamma_bound<T>(3);
+            // Each computed distance is within gamma(3) of the exact one. Widen both outward by
+            // 2*gamma(3), sign-aware (a negative far distance must grow towards zero, not away
+            // from it, or windows with tmin < 0 lose grazing boxes), so the computed interval
+            // contains the exact one and comparisons with the exact tmin/tmax stay conservative.
+            constexpr T grow = T(1) + T(2) * gamma_bound<T>(3);
+            constexpr T shrink = T(1) - T(2) * gamma_bound<T>(3);
+            tn *= tn > T(0) ? shrink : grow;
+            tf *= tf > T(0) ? grow : shrink;
         }
         // Written as "t > t0 ? t : t0" so a NaN (origin on the plane, zero direction) leaves the
         // interval unchanged: such a ray lies in the face plane and thus inside the closed slab.

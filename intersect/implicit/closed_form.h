@@ -4,11 +4,11 @@
 // cubic. Each root is polished by up to 2 Newton steps on the input polynomial (kept only when they
 // reduce |p|). Cost: one cbrt/acos + a few sqrt; no iteration beyond polishing.
 
+#include "intersect/implicit/poly.h"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
-
-#include "intersect/implicit/poly.h"
 
 namespace rtlab {
 
@@ -89,7 +89,8 @@ RealRoots<T, 4> solve_cubic(T c0, T c1, T c2, T c3) {
     const T q = T(2) * a * a * a / T(27) - a * b / T(3) + c;
     const T half_q = q / T(2), third_p = p / T(3);
     const T disc = half_q * half_q + third_p * third_p * third_p;
-    const T slack = detail::disc_slack<T>() * (half_q * half_q + std::abs(third_p * third_p * third_p));
+    const T slack =
+        detail::disc_slack<T>() * (half_q * half_q + std::abs(third_p * third_p * third_p));
     RealRoots<T, 4> r;
     if (disc > slack) {
         // One real root (Cardano); A and B chosen so A + B does not cancel.
@@ -141,7 +142,26 @@ RealRoots<T, 4> solve_quartic(T c0, T c1, T c2, T c3, T c4) {
     const T r = d - a * c / T(4) + a2 * b / T(16) - T(3) * a2 * a2 / T(256);
     RealRoots<T, 4> out;
     const T scale = std::abs(c) + std::abs(a * b / T(2)) + std::abs(a2 * a / T(8));
-    if (std::abs(q) <= detail::disc_slack<T>() * scale) {
+    // Resolvent cubic 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0 has a root m > 0 when q != 0;
+    // then x^4 + p x^2 + q x + r = (x^2 + p/2 + m)^2 - 2m (x - q/(4m))^2. When q is rounding noise
+    // (or m underflows to <= 0) the quartic is treated as biquadratic.
+    T m = T(0);
+    if (std::abs(q) > detail::disc_slack<T>() * scale) {
+        const RealRoots<T, 4> ms = solve_cubic(-q * q, T(2) * p * p - T(8) * r, T(8) * p, T(8));
+        m = ms.count > 0 ? ms.t[ms.count - 1] : T(0);
+    }
+    if (m > T(0)) {
+        const T s = std::sqrt(T(2) * m);
+        const T k = q / (T(2) * s);
+        const RealRoots<T, 4> r1 = solve_quadratic(p / T(2) + m + k, -s, T(1));
+        const RealRoots<T, 4> r2 = solve_quadratic(p / T(2) + m - k, s, T(1));
+        for (std::size_t i = 0; i < r1.count; ++i) {
+            out.push(r1.t[i] - shift);
+        }
+        for (std::size_t i = 0; i < r2.count; ++i) {
+            out.push(r2.t[i] - shift);
+        }
+    } else {
         // Biquadratic: y = x^2 solves y^2 + p y + r = 0.
         const RealRoots<T, 4> ys = solve_quadratic(r, p, T(1));
         for (std::size_t i = 0; i < ys.count; ++i) {
@@ -149,25 +169,9 @@ RealRoots<T, 4> solve_quartic(T c0, T c1, T c2, T c3, T c4) {
                 const T x = std::sqrt(ys.t[i]);
                 out.push(-x - shift);
                 out.push(x - shift);
-            } else if (ys.t[i] >= -detail::disc_slack<T>() * (std::abs(p) + std::sqrt(std::abs(r)))) {
+            } else if (ys.t[i] >=
+                       -detail::disc_slack<T>() * (std::abs(p) + std::sqrt(std::abs(r)))) {
                 out.push(-shift);
-            }
-        }
-    } else {
-        // Resolvent cubic 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0 has a root m > 0 when q != 0;
-        // then x^4 + p x^2 + q x + r = (x^2 + p/2 + m)^2 - 2m (x - q/(4m))^2.
-        const RealRoots<T, 4> ms = solve_cubic(-q * q, T(2) * p * p - T(8) * r, T(8) * p, T(8));
-        const T m = ms.count > 0 ? ms.t[ms.count - 1] : T(0);
-        if (m > T(0)) {
-            const T s = std::sqrt(T(2) * m);
-            const T k = q / (T(2) * s);
-            const RealRoots<T, 4> r1 = solve_quadratic(p / T(2) + m + k, -s, T(1));
-            const RealRoots<T, 4> r2 = solve_quadratic(p / T(2) + m - k, s, T(1));
-            for (std::size_t i = 0; i < r1.count; ++i) {
-                out.push(r1.t[i] - shift);
-            }
-            for (std::size_t i = 0; i < r2.count; ++i) {
-                out.push(r2.t[i] - shift);
             }
         }
     }

@@ -3,13 +3,13 @@
 // Numerical Recipes 9.5, "laguer"/"zroots"; fractional steps every 10 iterations break limit
 // cycles). Roots are polished on the undeflated polynomial. Cost: ~N * 10 iterations of O(N).
 
+#include "intersect/implicit/poly.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
-
-#include "intersect/implicit/poly.h"
 
 namespace rtlab {
 
@@ -17,8 +17,7 @@ namespace detail {
 
 /// One Laguerre root of the complex polynomial a[0..m] from the start x (in place).
 template <class T, std::size_t N>
-void laguerre_root(const std::array<std::complex<T>, N + 1>& a, std::size_t m,
-                   std::complex<T>& x) {
+void laguerre_root(const std::array<std::complex<T>, N + 1>& a, std::size_t m, std::complex<T>& x) {
     using C = std::complex<T>;
     constexpr int iters_per_frac = 10;
     constexpr std::array<T, 9> frac{T(0),    T(0.5),  T(0.25), T(0.75), T(0.13),
@@ -48,9 +47,8 @@ void laguerre_root(const std::array<std::complex<T>, N + 1>& a, std::size_t m,
         if (abp < abm) {
             gp = gm;
         }
-        const C dx = std::max(abp, abm) > T(0)
-                         ? md / gp
-                         : std::polar(T(1) + abx, static_cast<T>(it));
+        const C dx =
+            std::max(abp, abm) > T(0) ? md / gp : std::polar(T(1) + abx, static_cast<T>(it));
         const C x1 = x - dx;
         if (x1 == x) {
             return;
@@ -99,16 +97,18 @@ std::array<std::complex<T>, N> laguerre_all_roots(const Polynomial<T, N>& p, std
     return roots;
 }
 
-/// Real roots of p, ascending: Laguerre roots whose imaginary part is within
-/// 64 eps (1 + |z|) of zero (rounding noise of a simple real root), real parts kept.
+/// Real roots of p, ascending: the Laguerre roots x + iy with |y| <= sqrt(eps) (1 + |z|), real
+/// parts kept. Why sqrt(eps): close real roots are ill-conditioned and come back with |y| well
+/// above rounding (1e-13 in double for roots 1e-3 apart), and a complex pair with |y| below
+/// sqrt(eps) has |p| within rounding of 0 between the pair, so it is numerically a double root.
 template <class T, std::size_t N>
 RealRoots<T, N> laguerre_real_roots(const Polynomial<T, N>& p) {
     std::size_t count = 0;
     const auto roots = laguerre_all_roots(p, count);
+    const T rel = std::sqrt(std::numeric_limits<T>::epsilon());
     RealRoots<T, N> r;
     for (std::size_t i = 0; i < count; ++i) {
-        const T tol = T(64) * std::numeric_limits<T>::epsilon() * (T(1) + std::abs(roots[i]));
-        if (std::abs(roots[i].imag()) <= tol) {
+        if (std::abs(roots[i].imag()) <= rel * (T(1) + std::abs(roots[i]))) {
             r.push(roots[i].real());
         }
     }

@@ -3,6 +3,7 @@
 // et al., Numerical Recipes 9.4), with an analytic derivative or a central-difference one (as the
 // seed 001 tracer does). Cost: <= max_iter evaluations; stops when the bracket is a few ulps wide.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -16,8 +17,8 @@ namespace rtlab {
 /// bisected. Returns nullopt when the bracket has no sign change.
 template <class T, class Fdf>
 std::optional<T> newton_bisect(Fdf&& fdf, T lo, T hi, int max_iter = 100) {
-    auto [flo, dlo] = fdf(lo);
-    auto [fhi, dhi] = fdf(hi);
+    const T flo = fdf(lo).first;
+    const T fhi = fdf(hi).first;
     if (flo == T(0)) {
         return lo;
     }
@@ -33,7 +34,8 @@ std::optional<T> newton_bisect(Fdf&& fdf, T lo, T hi, int max_iter = 100) {
     T t = (lo + hi) / T(2);
     T dx_old = std::abs(hi - lo);
     T dx = dx_old;
-    auto [f, df] = fdf(t);
+    std::pair<T, T> fd = fdf(t);
+    T f = fd.first, df = fd.second;
     for (int i = 0; i < max_iter; ++i) {
         const T newton = t - f / df;
         const bool outside = !(newton > std::min(neg, pos) && newton < std::max(neg, pos));
@@ -51,7 +53,9 @@ std::optional<T> newton_bisect(Fdf&& fdf, T lo, T hi, int max_iter = 100) {
         if (std::abs(dx) <= tol || std::abs(pos - neg) <= tol) {
             return t;
         }
-        std::tie(f, df) = fdf(t);
+        fd = fdf(t);
+        f = fd.first;
+        df = fd.second;
         if (f == T(0)) {
             return t;
         }

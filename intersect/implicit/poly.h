@@ -77,8 +77,18 @@ struct RealRoots {
             t[count++] = r;
         }
     }
-    /// Sort the valid entries ascending.
-    void sort() { std::sort(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(count)); }
+    /// Sort the valid entries ascending (insertion sort: N <= 4, and GCC 12 -O3 reports a false
+    /// -Warray-bounds inside std::sort on a 4-element array).
+    constexpr void sort() {
+        for (std::size_t i = 1; i < count; ++i) {
+            const T v = t[i];
+            std::size_t j = i;
+            for (; j > 0 && t[j - 1] > v; --j) {
+                t[j] = t[j - 1];
+            }
+            t[j] = v;
+        }
+    }
     /// Smallest root in [lo, hi], or false.
     constexpr bool first_in(T lo, T hi, T& out) const {
         for (std::size_t i = 0; i < count; ++i) {

@@ -2,12 +2,12 @@
 // Goursat's "tangle cube" x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8 = 0 in local coordinates
 // q = (p - centre) / scale; a quartic of genus 5. Cost of the ray polynomial: ~40 multiply-adds.
 
+#include "intersect/bounds.h"
+#include "intersect/implicit/poly.h"
+
 #include <cmath>
 #include <limits>
 #include <string_view>
-
-#include "intersect/bounds.h"
-#include "intersect/implicit/poly.h"
 
 namespace rtlab {
 

@@ -2,12 +2,12 @@
 // Torus about the z axis: f(p) = (|q|^2 + R^2 - r^2)^2 - 4 R^2 (qx^2 + qy^2) with q = p - centre,
 // a quartic; f < 0 inside the tube. Cost of the ray polynomial: ~25 multiply-adds.
 
+#include "intersect/bounds.h"
+#include "intersect/implicit/poly.h"
+
 #include <cmath>
 #include <limits>
 #include <string_view>
-
-#include "intersect/bounds.h"
-#include "intersect/implicit/poly.h"
 
 namespace rtlab {
 

@@ -3,12 +3,12 @@
 // t = (-b -+ sqrt(b^2 - 4ac)) / 2a. No epsilon. Cancellation in b^2 - 4ac when the sphere is small
 // and far (relative error ~ eps (D/r)^2). Cost: 3 dot products, 1 sqrt, 2 divisions.
 
+#include "intersect/sphere/sphere.h"
+
 #include <cmath>
 #include <optional>
 #include <string_view>
 #include <utility>
-
-#include "intersect/sphere/sphere.h"
 
 namespace rtlab {
 

@@ -4,12 +4,12 @@
 // by a = d.d. No epsilon: the seed's `m^2 - r^2 > eps` choice is replaced by taking the nearest
 // root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root.
 
+#include "intersect/sphere/sphere.h"
+
 #include <cmath>
 #include <optional>
 #include <string_view>
 #include <utility>
-
-#include "intersect/sphere/sphere.h"
 
 namespace rtlab {
 
@@ -30,9 +30,9 @@ struct SphereGeometric {
     static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
         const Vec3<T> m = p.center - ray.org;  // origin -> centre
         const T a = dot(ray.dir, ray.dir);
-        const T b = dot(m, ray.dir);           // a * (projection of the centre on the ray)
-        const T c = dot(m, m) - p.radius2;     // > 0: origin outside
-        const T disc = b * b - a * c;          // a^2 * squared half chord
+        const T b = dot(m, ray.dir);        // a * (projection of the centre on the ray)
+        const T c = dot(m, m) - p.radius2;  // > 0: origin outside
+        const T disc = b * b - a * c;       // a^2 * squared half chord
         if (disc < T(0)) {
             return std::nullopt;
         }

@@ -1,14 +1,14 @@
 #pragma once
 // Sphere: the shape every sphere intersection method prepares, plus the helpers they share.
 
+#include "intersect/bounds.h"
+#include "intersect/hit.h"
+#include "intersect/ray.h"
+
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <utility>
-
-#include "intersect/bounds.h"
-#include "intersect/hit.h"
-#include "intersect/ray.h"
 
 namespace rtlab {
 

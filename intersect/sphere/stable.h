@@ -3,12 +3,12 @@
 // Tracing Gems (2019) ch. 7: discriminant from the centre's distance to the ray's line (Hearn &
 // Baker), roots by q = -(b + sign(b) sqrt(disc)), t0 = q/a, t1 = c/q. No epsilon. Cost: 4 dots.
 
+#include "intersect/sphere/sphere.h"
+
 #include <cmath>
 #include <optional>
 #include <string_view>
 #include <utility>
-
-#include "intersect/sphere/sphere.h"
 
 namespace rtlab {
 

@@ -1,9 +1,7 @@
 #pragma once
-// Badouel 1990, "An efficient ray-polygon intersection" (Graphics Gems I): ray-plane distance,
-// then 2D barycentrics in the coordinate plane that drops the normal's dominant axis; the plane
-// and the inverted 2x2 projection are precomputed. Cost per test: 2 dot, 1 division, 6 mul-add.
-// Epsilon policy: none. dot(n, dir) == 0 (parallel, or a degenerate triangle stored with n = 0)
-// is a miss; edges are inclusive; every test fails on NaN.
+// Badouel 1990, "An efficient ray-polygon intersection" (Graphics Gems): ray-plane t, then 2D
+// barycentrics in the plane that drops the dominant normal axis (plane and inverse 2x2 map
+// precomputed). Epsilon: none (n.dir == 0 misses, edges inclusive). Cost: 2 dot, 1 div, 6 madd.
 
 #include "intersect/hit.h"
 #include "intersect/method.h"
@@ -50,7 +48,7 @@ struct Badouel {
         p.i2 = static_cast<std::uint8_t>(i2);
         // The 2x2 determinant e1[i1] e2[i2] - e2[i1] e1[i2] is n[k], the largest normal component.
         const T det = n[k];
-        if (det == T(0)) {
+        if (det == T(0) || is_degenerate(s.p0, s.p1, s.p2)) {
             return p;  // n = 0 stays zero: never hits
         }
         p.n = n;

@@ -21,6 +21,7 @@ template <class T>
 using TriangleIntersectors = std::tuple<MollerTrumbore<T>, Badouel<T>, Watertight<T>>;
 
 namespace detail {
+/// Calls f.template operator()<M>() for each M of the tuple type, in order.
 template <class F, class... Ms>
 void for_each_type(F& f, std::tuple<Ms...>*) {
     (f.template operator()<Ms>(), ...);

@@ -1,10 +1,7 @@
 #pragma once
-// Möller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection" (JGT 2(1)): Cramer's
-// rule on the edge vectors, two-sided (no culling), divide before the u/v tests. Cost per test:
-// 2 cross, 4 dot, 1 division, 6 subtractions for the edges; storage: the three vertices.
-// Epsilon policy: none. Only det == 0 (ray parallel to the plane, or degenerate triangle) is
-// rejected; edges are inclusive (u, v >= 0, u + v <= 1). Every test is written so that a NaN
-// fails it, so a tiny det (inv = inf) never yields a hit or a NaN.
+// Möller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection": Cramer's rule,
+// two-sided, divide before the u/v tests. Epsilon: none (det == 0 misses, edges inclusive, NaN
+// fails every test). Cost: 2 cross, 4 dot, 1 division per test; stores the three vertices.
 
 #include "intersect/hit.h"
 #include "intersect/method.h"

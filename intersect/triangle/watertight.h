@@ -1,11 +1,7 @@
 #pragma once
-// Woop, Benthin & Wald 2013, "Watertight ray/triangle intersection" (JCGT 2(1)): shear and scale
-// into ray space (z along the dominant direction axis), 2D edge functions U, V, W; in float an
-// edge function that is exactly 0 is recomputed in double; t by the scaled range test before the
-// one division. Two-sided. Cost: 3 subtractions, 6 mul-add for the shear, 3 edge functions,
-// 1 division; the per-ray part (kx, ky, kz, Sx, Sy, Sz) can be cached with WatertightRay.
-// Epsilon policy: none, and none is needed: edges shared by two triangles are decided
-// consistently, and an edge function of exactly 0 (inclusive) is claimed by both neighbours.
+// Woop, Benthin & Wald 2013, "Watertight ray/triangle intersection" (JCGT): ray-space shear,
+// edge functions with the double fallback for exact float zeros, scaled t-range test, two-sided.
+// Epsilon: none, zero edge functions are inclusive. Cost: 6 madd shear, 3 edge fns, 1 division.
 
 #include "intersect/hit.h"
 #include "intersect/method.h"
@@ -17,6 +13,7 @@
 #include <optional>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 namespace rtlab {
 
@@ -45,7 +42,9 @@ struct WatertightRay {
     }
 };
 
-/// Watertight ray/triangle test (Woop, Benthin & Wald 2013), templated on the scalar type.
+/// Watertight ray/triangle test (Woop, Benthin & Wald 2013), templated on the scalar type. Edges
+/// shared by two triangles are decided consistently (a float edge function is exact in sign once
+/// its zeros are redone in double); double has no wider fallback, a zero only adds hits.
 template <class T>
 struct Watertight {
     using Scalar = T;

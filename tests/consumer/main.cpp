@@ -1,7 +1,7 @@
 // A tiny outside project: links rtlab::intersect from an installed rtlab and traces one ray.
-#include <cstdio>
-
 #include "intersect/triangle/moller_trumbore.h"
+
+#include <cstdio>
 
 int main() {
     using M = rtlab::MollerTrumbore<float>;

@@ -1,0 +1,28 @@
+#pragma once
+// The AABB and OBB intersection methods as compile-time lists, for tests, cross-checks and
+// benchmarks.
+
+#include "intersect/box/aabb.h"
+#include "intersect/box/obb.h"
+#include "intersect/method.h"
+
+namespace rtlab {
+
+static_assert(IntersectionMethod<AabbSlabs<float>>);
+static_assert(IntersectionMethod<AabbSlabsRobust<double>>);
+static_assert(IntersectionMethod<ObbSlabs<float>>);
+
+/// Calls f.template operator()<M>() for every AABB method M in scalar T, in table order.
+template <class T, class F>
+void for_each_aabb_method(F&& f) {
+    f.template operator()<AabbSlabs<T>>();
+    f.template operator()<AabbSlabsRobust<T>>();
+}
+
+/// Calls f.template operator()<M>() for every OBB method M in scalar T, in table order.
+template <class T, class F>
+void for_each_obb_method(F&& f) {
+    f.template operator()<ObbSlabs<T>>();
+}
+
+}  // namespace rtlab
