@@ -2,14 +2,14 @@
 // Turns per-ray (method answer, oracle answer) pairs into a Row: agreement counts and the
 // relative error of t where both say hit.
 
+#include "crosscheck/crosscheck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include "crosscheck/crosscheck.h"
 
 namespace rtlab::xcheck {
 
@@ -45,7 +45,10 @@ public:
     }
 
     /// The finished row; ns_per_test is the caller's timing.
-    Row row(std::string prim, std::string method, std::string precision, std::string set,
+    Row row(std::string prim,
+            std::string method,
+            std::string precision,
+            std::string set,
             double ns_per_test) const {
         Row r;
         r.prim = std::move(prim);

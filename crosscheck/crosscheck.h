@@ -24,17 +24,17 @@ struct Options {
 
 /// One line of the table: a method in one precision against the exact oracle.
 struct Row {
-    std::string prim;              ///< primitive kind: triangle, polygon, aabb, obb, sphere, ...
-    std::string method;            ///< method name as accepted by --method
-    std::string precision;         ///< "float" or "double"
-    std::string set = "all";       ///< ray set name, "all" for the total
-    std::size_t rays = 0;          ///< rays traced
-    std::size_t agree = 0;         ///< rays whose hit/miss answer equals the oracle's
-    std::size_t false_hit = 0;     ///< method hit, oracle says miss
-    std::size_t false_miss = 0;    ///< method missed, oracle says hit
-    double max_rel_t_err = 0;      ///< over rays both call a hit; NaN when the method has no t
-    double median_rel_t_err = 0;   ///< same, median
-    double ns_per_test = 0;        ///< wall time of one ray-primitive test, single thread
+    std::string prim;             ///< primitive kind: triangle, polygon, aabb, obb, sphere, ...
+    std::string method;           ///< method name as accepted by --method
+    std::string precision;        ///< "float" or "double"
+    std::string set = "all";      ///< ray set name, "all" for the total
+    std::size_t rays = 0;         ///< rays traced
+    std::size_t agree = 0;        ///< rays whose hit/miss answer equals the oracle's
+    std::size_t false_hit = 0;    ///< method hit, oracle says miss
+    std::size_t false_miss = 0;   ///< method missed, oracle says hit
+    double max_rel_t_err = 0;     ///< over rays both call a hit; NaN when the method has no t
+    double median_rel_t_err = 0;  ///< same, median
+    double ns_per_test = 0;       ///< wall time of one ray-primitive test, single thread
 };
 
 /// One primitive kind's checker.

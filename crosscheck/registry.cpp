@@ -16,7 +16,9 @@ const std::array<PrimCheck, 6> checks{{
 }};
 }  // namespace
 
-std::span<const PrimCheck> prim_checks() { return checks; }
+std::span<const PrimCheck> prim_checks() {
+    return checks;
+}
 
 const PrimCheck* find_prim_check(std::string_view prim) {
     for (const PrimCheck& c : checks) {
