@@ -3,14 +3,14 @@
 // is built from their bounds, and traversal calls the caller's leaf callback with the caller's
 // primitive id. Counting compiles away unless a TraversalStats is passed.
 
+#include "intersect/bounds.h"
+#include "intersect/ray.h"
+
 #include <concepts>
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <string>
-
-#include "intersect/bounds.h"
-#include "intersect/ray.h"
 
 namespace rtlab {
 
@@ -82,16 +82,32 @@ struct AccelInfo {
     double refs_per_prim = 0;     ///< primitive references / primitive count (BVH: 1)
 };
 
+namespace detail {
+/// Leaf callbacks that never hit, used to state the Accel concept.
+struct NullClosestHit {
+    bool operator()(std::uint32_t, Rayf&) const { return false; }
+};
+struct NullAnyHit {
+    bool operator()(std::uint32_t, const Rayf&) const { return false; }
+};
+}  // namespace detail
+
 /// What every structure offers. `validate()` returns an empty string when every invariant holds,
 /// else a description of the first violation.
 template <class A>
-concept Accel = requires(const A& a, Rayf& ray, const Rayf& cray, const BuildInput& in,
-                         const typename A::Config& cfg, TraversalStats& st) {
+concept Accel = requires(const A& a,
+                         Rayf& ray,
+                         const Rayf& cray,
+                         const BuildInput& in,
+                         const typename A::Config& cfg,
+                         TraversalStats& st,
+                         detail::NullClosestHit closest,
+                         detail::NullAnyHit any) {
     { A::build(in, cfg) } -> std::same_as<A>;
-    { a.intersect(ray, [](std::uint32_t, Rayf&) { return false; }) } -> std::same_as<bool>;
-    { a.intersect(ray, [](std::uint32_t, Rayf&) { return false; }, st) } -> std::same_as<bool>;
-    { a.occluded(cray, [](std::uint32_t, const Rayf&) { return false; }) } -> std::same_as<bool>;
-    { a.occluded(cray, [](std::uint32_t, const Rayf&) { return false; }, st) } -> std::same_as<bool>;
+    { a.intersect(ray, closest) } -> std::same_as<bool>;
+    { a.intersect(ray, closest, st) } -> std::same_as<bool>;
+    { a.occluded(cray, any) } -> std::same_as<bool>;
+    { a.occluded(cray, any, st) } -> std::same_as<bool>;
     { a.bounds() } -> std::same_as<Bounds3f>;
     { a.info() } -> std::same_as<AccelInfo>;
     { a.validate() } -> std::same_as<std::string>;

@@ -2,12 +2,12 @@
 // Brute force: tests every primitive whose box the ray's window meets. The reference every other
 // structure is checked against. Cost: O(N) per ray.
 
+#include "accel/accel.h"
+#include "intersect/box/slabs.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include "accel/accel.h"
-#include "intersect/box/slabs.h"
 
 namespace rtlab {
 
@@ -85,10 +85,12 @@ struct BruteForce {
         return i;
     }
 
-    /// Checks that the scene box contains every primitive box.
+    /// Checks that the scene box contains every primitive box (NaN boxes are never hit).
     std::string validate() const {
         for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-            if (!boxes[i].empty() && !scene_bounds.contains(boxes[i])) {
+            const Bounds3f& b = boxes[i];
+            const bool nan = !is_finite(b.lo - b.lo) || !is_finite(b.hi - b.hi);
+            if (!b.empty() && !nan && !scene_bounds.contains(b)) {
                 return "primitive " + std::to_string(i) + " lies outside the scene bounds";
             }
         }
@@ -97,5 +99,7 @@ struct BruteForce {
 
     friend bool operator==(const BruteForce&, const BruteForce&) = default;
 };
+
+static_assert(Accel<BruteForce>);
 
 }  // namespace rtlab

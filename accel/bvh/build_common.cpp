@@ -1,0 +1,73 @@
+// Shared machinery of the BVH builders; see build_common.h.
+
+#include "accel/bvh/build_common.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace rtlab::bvh_detail {
+
+bool is_usable(const Bounds3f& b) {
+    return is_finite(b.lo) && is_finite(b.hi) && b.lo.x <= b.hi.x && b.lo.y <= b.hi.y &&
+           b.lo.z <= b.hi.z;
+}
+
+std::uint32_t ceil_log2(std::uint64_t n) {
+    return n <= 1 ? 0u : static_cast<std::uint32_t>(std::bit_width(n - 1));
+}
+
+Bvh::Config clamped(const Bvh::Config& cfg) {
+    Bvh::Config c = cfg;
+    c.max_leaf_size = std::clamp(c.max_leaf_size, 1u, BvhNode::max_prim_count);
+    c.bin_count = std::max(c.bin_count, 1u);
+    c.morton_bits = std::clamp(c.morton_bits, 1u, 10u);
+    return c;
+}
+
+TopDown::TopDown(const BuildInput& in, const Bvh::Config& cfg)
+    : boxes(in.bounds), centers(in.bounds.size()), config(cfg) {
+    ids.reserve(boxes.size());
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+        if (is_usable(boxes[i])) {
+            ids.push_back(i);
+            centers[i] = boxes[i].center();
+        }
+    }
+}
+
+Bounds3f TopDown::range_bounds(std::uint32_t b, std::uint32_t e) const {
+    Bounds3f r;
+    for (std::uint32_t i = b; i < e; ++i) {
+        r.extend(boxes[ids[i]]);
+    }
+    return r;
+}
+
+Bounds3f TopDown::centroid_bounds(std::uint32_t b, std::uint32_t e) const {
+    Bounds3f r;
+    for (std::uint32_t i = b; i < e; ++i) {
+        r.extend(centers[ids[i]]);
+    }
+    return r;
+}
+
+Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
+    const auto axis = static_cast<std::uint32_t>(centroid_bounds(b, e).largest_axis());
+    const std::uint32_t mid = b + (e - b) / 2;
+    std::nth_element(ids.begin() + b, ids.begin() + mid, ids.begin() + e,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                         const float cx = centers[x][axis], cy = centers[y][axis];
+                         return cx < cy || (cx == cy && x < y);
+                     });
+    return {mid, axis};
+}
+
+bool TopDown::must_balance(std::uint32_t depth, std::uint32_t n) {
+    // An unbalanced split leaves a child of up to n - 1 primitives at depth + 1; it is safe while
+    // depth + 1 + ceil_log2(n) <= 64, since a balanced split from there on loses one log2 per
+    // level.
+    return depth + 1 + ceil_log2(n) > 64;
+}
+
+}  // namespace rtlab::bvh_detail

@@ -1,0 +1,101 @@
+#pragma once
+// Shared machinery of the BVH builders (internal to accel/bvh): which boxes are usable, the
+// top-down recursion that emits Wald nodes in depth-first pair order, the object-median split and
+// the depth guard that keeps every leaf at depth <= 64.
+
+#include "accel/bvh/bvh.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace rtlab::bvh_detail {
+
+/// True when box b can be referenced: finite coordinates and lo <= hi on every axis.
+bool is_usable(const Bounds3f& b);
+
+/// ceil(log2(n)) for n >= 1 (0 for n = 1).
+std::uint32_t ceil_log2(std::uint64_t n);
+
+/// The configuration with every field clamped to its documented range.
+Bvh::Config clamped(const Bvh::Config& cfg);
+
+/// A split of the id range [b, e): [b, mid) goes left, [mid, e) right (b < mid < e).
+struct Split {
+    std::uint32_t mid;   ///< first slot of the right child
+    std::uint32_t axis;  ///< split axis stored in the node to order traversal
+};
+
+/// State of one top-down build: input boxes, centres, the working order of usable primitive ids
+/// (each node owns a contiguous range of it) and the output tree.
+class TopDown {
+public:
+    /// Collects the usable primitives of `in` in id order; cfg must already be clamped.
+    TopDown(const BuildInput& in, const Bvh::Config& cfg);
+
+    std::span<const Bounds3f> boxes;  ///< input boxes by primitive id
+    std::vector<Vec3f> centers;       ///< box centres by primitive id
+    std::vector<std::uint32_t> ids;   ///< usable primitive ids; node ranges index into it
+    Bvh::Config config;               ///< clamped configuration
+
+    /// Union of the boxes of ids[b, e).
+    Bounds3f range_bounds(std::uint32_t b, std::uint32_t e) const;
+    /// Union of the centres of ids[b, e).
+    Bounds3f centroid_bounds(std::uint32_t b, std::uint32_t e) const;
+    /// Object median of ids[b, e) on the largest centroid axis (ties by id); reorders the range.
+    Split median_split(std::uint32_t b, std::uint32_t e);
+    /// True when a split of n primitives at `depth` must be balanced (children <= ceil(n/2)) so
+    /// that every leaf below stays at depth <= 64: invariant depth + ceil_log2(n) <= 64.
+    static bool must_balance(std::uint32_t depth, std::uint32_t n);
+
+    /// Runs the recursion. split(*this, b, e, box, balance) returns a Split or nullopt for a
+    /// leaf; when balance is true it must return a balanced split, and it must split whenever
+    /// e - b > max_leaf_size. Returns the finished tree.
+    template <class SplitFn>
+    Bvh run(SplitFn&& split) {
+        Bvh bvh;
+        bvh.prim_count = static_cast<std::uint32_t>(boxes.size());
+        bvh.unreferenced_count = bvh.prim_count - static_cast<std::uint32_t>(ids.size());
+        bvh.config = config;
+        if (!ids.empty()) {
+            bvh.nodes.reserve(2 * ids.size() - 1);
+            bvh.nodes.emplace_back();
+            const auto n = static_cast<std::uint32_t>(ids.size());
+            build_node(bvh, split, 0, 0, n, 0, range_bounds(0, n));
+        }
+        bvh.prim_ids = ids;
+        return bvh;
+    }
+
+private:
+    template <class SplitFn>
+    void build_node(Bvh& bvh,
+                    SplitFn& split,
+                    std::uint32_t node,
+                    std::uint32_t b,
+                    std::uint32_t e,
+                    std::uint32_t depth,
+                    const Bounds3f& box) {
+        const std::uint32_t n = e - b;
+        std::optional<Split> s;
+        if (n > 1) {
+            s = split(*this, b, e, box, must_balance(depth, n));
+            if (!s && n > config.max_leaf_size) {
+                s = median_split(b, e);
+            }
+        }
+        if (!s) {
+            bvh.nodes[node] = BvhNode::make_leaf(box, b, n);
+            return;
+        }
+        const auto left = static_cast<std::uint32_t>(bvh.nodes.size());
+        bvh.nodes.emplace_back();
+        bvh.nodes.emplace_back();
+        bvh.nodes[node] = BvhNode::make_inner(box, left, s->axis);
+        build_node(bvh, split, left, b, s->mid, depth + 1, range_bounds(b, s->mid));
+        build_node(bvh, split, left + 1, s->mid, e, depth + 1, range_bounds(s->mid, e));
+    }
+};
+
+}  // namespace rtlab::bvh_detail

@@ -1,0 +1,20 @@
+// Object-median BVH (the "equal counts" split of Kay & Kajiya 1986 style hierarchies, pbrt's
+// EqualCounts): split at the median centroid on the largest centroid axis until a range fits in
+// one leaf. Cost: O(N log N) with nth_element.
+
+#include "accel/bvh/build_common.h"
+
+namespace rtlab {
+
+Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg) {
+    bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
+    return td.run([](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
+                     bool) -> std::optional<bvh_detail::Split> {
+        if (e - b <= t.config.max_leaf_size) {
+            return std::nullopt;
+        }
+        return t.median_split(b, e);
+    });
+}
+
+}  // namespace rtlab

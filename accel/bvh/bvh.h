@@ -1,0 +1,166 @@
+#pragma once
+// Binary BVH over primitive boxes: 32-byte Wald nodes with adjacent children, built by one of four
+// builders (one .cpp each), traversed front-to-back by the ray's direction sign on each node's
+// split axis with a fixed 64-entry stack. Cost per ray: O(log N) nodes for well-built trees.
+// Boxes that are empty, NaN or not finite are never referenced: no ray hits an empty box, a NaN
+// box bounds no real geometry, and an infinite one would make every node infinite (unbounded
+// primitives such as planes belong outside the BVH). validate() counts them as legal gaps.
+
+#include "accel/accel.h"
+#include "accel/bvh/node.h"
+#include "intersect/box/slabs.h"
+
+#include <cassert>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtlab {
+
+/// Which top-down or bottom-up algorithm builds the tree.
+enum class BvhBuilder : std::uint8_t {
+    median,      ///< object median on the largest centroid axis
+    binned_sah,  ///< binned SAH (Wald 2007)
+    sweep_sah,   ///< full-sweep SAH over sorted centroids (MacDonald & Booth 1990)
+    lbvh,        ///< Morton-code radix tree (Karras 2012)
+};
+
+/// A binary BVH: the root at 0, then child pairs in the order a depth-first build splits their
+/// parents (a left subtree's pairs precede its right sibling's), and the leaves' primitive ids.
+struct Bvh {
+    /// Build parameters; out-of-range values are clamped by build() and stored clamped.
+    struct Config {
+        BvhBuilder builder = BvhBuilder::binned_sah;  ///< the algorithm
+        std::uint32_t max_leaf_size = 4;  ///< leaves never hold more (clamped to [1, 2^30 - 1])
+        std::uint32_t bin_count = 16;     ///< bins per axis for binned SAH (>= 1; 1 = median)
+        float traversal_cost = 1.0f;      ///< SAH cost of one node visit
+        float intersection_cost = 1.0f;   ///< SAH cost of one primitive test
+        std::uint32_t morton_bits = 10;   ///< LBVH bits per axis (clamped to [1, 10]; 30-bit codes)
+
+        friend bool operator==(const Config&, const Config&) = default;
+    };
+
+    std::vector<BvhNode> nodes;            ///< root at 0; empty when no box was usable
+    std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
+    std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
+    std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
+    Config config;                         ///< the (clamped) configuration it was built with
+
+    /// Builds with the builder named by cfg.builder; deterministic, O(N log N).
+    [[nodiscard]] static Bvh build(const BuildInput& in, const Config& cfg);
+    /// Builds with the default Config (binned SAH).
+    [[nodiscard]] static Bvh build(const BuildInput& in);
+
+    /// Closest hit: offers hit_fn every primitive in a leaf whose box the shrinking window
+    /// [ray.tmin, ray.tmax] meets, near child first. Invalid rays return false before any node.
+    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
+    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        if (!is_valid(ray)) {
+            return false;
+        }
+        stats.count_ray();
+        if (nodes.empty()) {
+            return false;
+        }
+        const SlabRay<float> sr(ray);
+        std::uint32_t stack[64];
+        std::uint32_t size = 0;
+        std::uint32_t current = 0;
+        bool hit = false;
+        for (;;) {
+            const BvhNode& node = nodes[current];
+            stats.count_node();
+            float t0 = ray.tmin, t1 = ray.tmax;
+            if (clip_slabs<IsRobust>(node.lo, node.hi, sr, t0, t1)) {
+                if (!node.is_leaf()) {
+                    // Near child first: with a negative direction on the split axis the right
+                    // (higher) child is met first.
+                    const bool right_first = sr.neg[node.axis()];
+                    assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
+                    stack[size++] = right_first ? node.first : node.first + 1;
+                    current = right_first ? node.first + 1 : node.first;
+                    continue;
+                }
+                const std::uint32_t end = node.first + node.prim_count();
+                for (std::uint32_t i = node.first; i < end; ++i) {
+                    stats.count_prim();
+                    hit = hit_fn(prim_ids[i], ray) || hit;
+                }
+            }
+            if (size == 0) {
+                return hit;
+            }
+            current = stack[--size];
+        }
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking. Invalid rays return
+    /// false before any node.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        if (!is_valid(ray)) {
+            return false;
+        }
+        stats.count_ray();
+        if (nodes.empty()) {
+            return false;
+        }
+        const SlabRay<float> sr(ray);
+        std::uint32_t stack[64];
+        std::uint32_t size = 0;
+        std::uint32_t current = 0;
+        for (;;) {
+            const BvhNode& node = nodes[current];
+            stats.count_node();
+            float t0 = ray.tmin, t1 = ray.tmax;
+            if (clip_slabs<IsRobust>(node.lo, node.hi, sr, t0, t1)) {
+                if (!node.is_leaf()) {
+                    const bool right_first = sr.neg[node.axis()];
+                    assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
+                    stack[size++] = right_first ? node.first : node.first + 1;
+                    current = right_first ? node.first + 1 : node.first;
+                    continue;
+                }
+                const std::uint32_t end = node.first + node.prim_count();
+                for (std::uint32_t i = node.first; i < end; ++i) {
+                    stats.count_prim();
+                    if (hit_fn(prim_ids[i], ray)) {
+                        return true;
+                    }
+                }
+            }
+            if (size == 0) {
+                return false;
+            }
+            current = stack[--size];
+        }
+    }
+
+    /// The root box (empty when no box was usable).
+    Bounds3f bounds() const { return nodes.empty() ? Bounds3f{} : nodes[0].bounds(); }
+
+    /// Sizes, depth and the SAH cost sum(inner A * Ct) + sum(leaf A * n * Ci), divided by the
+    /// root area A(root) (Ci * N when the root has zero area), with the Config's Ct and Ci.
+    AccelInfo info() const;
+
+    /// Empty when every invariant holds (each usable primitive referenced exactly once, ids
+    /// unique and < prim_count, children inside their parent, non-empty leaves of at most
+    /// max_leaf_size primitives, depth <= 64, every node reachable once); else the first
+    /// violation.
+    std::string validate() const;
+
+    friend bool operator==(const Bvh&, const Bvh&) = default;
+};
+
+/// Object-median builder: splits at the median centroid on the largest centroid axis.
+[[nodiscard]] Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg);
+/// Binned SAH builder (Wald 2007) with cfg.bin_count bins per axis.
+[[nodiscard]] Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg);
+/// Full-sweep SAH builder over presorted centroids (MacDonald & Booth 1990).
+[[nodiscard]] Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg);
+/// LBVH: Morton-code radix tree (Karras 2012) with leaves of up to cfg.max_leaf_size.
+[[nodiscard]] Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg);
+
+static_assert(Accel<Bvh>);
+
+}  // namespace rtlab

@@ -1,0 +1,190 @@
+#pragma once
+// kd-tree: 8-byte nodes, built by the O(N log N) SAH sweep of Wald & Havran 2006 (build_sah.cpp)
+// or by spatial medians (build_median.cpp); traversed front to back with a stack of
+// (node, t_enter, t_exit) as in Havran's thesis (2000, TA_rec_B) and pbrt. A primitive may be
+// referenced by several leaves, so a hit beyond the current leaf does not end the traversal.
+// Cost per ray: O(depth) inner-node steps per leaf visited plus the leaf primitives.
+
+#include "accel/accel.h"
+#include "accel/kdtree/node.h"
+#include "intersect/box/slabs.h"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtlab {
+
+/// Which kd-tree builder KdTree::build runs.
+enum class KdBuilder {
+    sah,     ///< Wald & Havran 2006 event sweep, O(N log N), with automatic termination
+    median,  ///< spatial median of the longest axis, same cost-based termination
+};
+
+/// A kd-tree over primitive boxes; nodes[0] is the root, prim_ids holds the leaves' lists.
+struct KdTree {
+    /// Build parameters; the cost constants are those of the SAH cost model.
+    struct Config {
+        KdBuilder builder = KdBuilder::sah;  ///< which builder runs
+        float traversal_cost = 1.0f;         ///< K_T: cost of one inner-node step
+        float intersection_cost = 1.5f;      ///< K_I: cost of one ray-primitive test
+        float empty_bonus = 0.8f;     ///< split cost is scaled by (1 - bonus) if a side is empty
+        std::uint32_t max_depth = 0;  ///< deepest leaf; 0 = 8 + 1.3 log2 N (pbrt); capped at 64
+        std::uint32_t min_leaf_size = 1;  ///< nodes with at most this many primitives are leaves
+    };
+
+    /// Deepest possible leaf whatever the configuration; sizes the traversal stack.
+    static constexpr std::uint32_t depth_limit = 64;
+
+    std::vector<KdNode> nodes;            ///< pre-order; an inner node's below child follows it
+    std::vector<std::uint32_t> prim_ids;  ///< leaf primitive lists (caller's primitive ids)
+    Bounds3f scene_bounds;                ///< union of the non-empty primitive boxes
+    std::vector<bool> prim_present;       ///< per primitive id: its box is non-empty and not NaN
+    std::uint32_t max_depth = 0;          ///< the depth limit the build used
+    float traversal_cost = 1.0f;          ///< K_T the build used (for info().sah_cost)
+    float intersection_cost = 1.5f;       ///< K_I the build used (for info().sah_cost)
+
+    /// Builds with the builder named in cfg; empty and NaN boxes are left out.
+    [[nodiscard]] static KdTree build(const BuildInput& in, const Config& cfg);
+    /// Builds with the default Config (a separate overload: GCC rejects `= {}` for a nested
+    /// struct with member initializers inside its enclosing class).
+    [[nodiscard]] static KdTree build(const BuildInput& in) { return build(in, Config{}); }
+
+    /// Closest hit: leaves are visited front to back and every primitive in them is offered to
+    /// hit_fn; traversal ends once ray.tmax (shrunk by hit_fn) lies within the current leaf.
+    /// Invalid rays (NaN, zero direction) are rejected before any node is touched.
+    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
+    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        bool hit = false;
+        traverse<IsRobust>(ray, stats, [&](std::uint32_t id) {
+            stats.count_prim();
+            hit = hit_fn(id, ray) || hit;
+            return false;
+        });
+        return hit;
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        Rayf r = ray;
+        return traverse<IsRobust>(r, stats, [&](std::uint32_t id) {
+            stats.count_prim();
+            return static_cast<bool>(hit_fn(id, ray));
+        });
+    }
+
+    /// Union of the non-empty primitive boxes.
+    Bounds3f bounds() const { return scene_bounds; }
+
+    /// Node, leaf and byte counts; sah_cost is the SAH cost-model value of the tree,
+    /// sum over inner nodes K_T * SA(node)/SA(root) + sum over leaves K_I * n * SA(leaf)/SA(root).
+    AccelInfo info() const;
+
+    /// Checks: node indices and leaf lists in range, each split inside its node's box, depth at
+    /// most max_depth, every primitive with a non-empty box referenced at least once.
+    std::string validate() const;
+
+    friend bool operator==(const KdTree&, const KdTree&) = default;
+
+private:
+    /// Front-to-back walk over the leaves the ray's window meets. visit(id) is called
+    /// for every primitive of a leaf and returns true to stop (any hit). After a leaf, only
+    /// subtrees whose window starts at or before ray.tmax are visited, so the walk ends once
+    /// ray.tmax <= that leaf's t_exit. Returns whether visit stopped it.
+    template <bool IsRobust, class S, class Visit>
+    bool traverse(Rayf& ray, S& stats, Visit&& visit) const {
+        if (!is_valid(ray) || nodes.empty()) {
+            return false;
+        }
+        stats.count_ray();
+        const SlabRay<float> sr(ray);
+        float t_enter = ray.tmin, t_exit = ray.tmax;
+        if (!clip_slabs<IsRobust>(scene_bounds.lo, scene_bounds.hi, sr, t_enter, t_exit)) {
+            return false;
+        }
+        struct Entry {
+            std::uint32_t node;
+            float t_enter, t_exit;
+        };
+        Entry stack[depth_limit + 1];
+        std::uint32_t top = 0;
+        std::uint32_t index = 0;
+        for (;;) {
+            const KdNode& n = nodes[index];
+            stats.count_node();
+            if (!n.is_leaf()) {
+                const std::uint32_t a = n.axis();
+                const float split = n.split();
+                // "First" is the child the ray enters first: below for a positive direction.
+                const std::uint32_t below = index + 1, above = n.above_child();
+                const std::uint32_t first = sr.neg[a] ? above : below;
+                const std::uint32_t second = sr.neg[a] ? below : above;
+                const float t_split = (split - sr.org[a]) * sr.inv_dir[a];
+                if (t_split != t_split) {
+                    // 0 * inf: the ray lies in the split plane, which both closed children share.
+                    stack[top++] = {second, t_enter, t_exit};
+                    index = first;
+                    continue;
+                }
+                // Robust: t_split carries the rounding of a subtraction, a multiplication and
+                // the reciprocal, so widen it by gamma(3) on each side (as the slab test does).
+                float lo_split = t_split, hi_split = t_split;
+                if constexpr (IsRobust) {
+                    const float pad = std::abs(t_split) * (2.0f * gamma_bound<float>(3));
+                    if (std::isfinite(pad)) {
+                        lo_split -= pad;
+                        hi_split += pad;
+                    }
+                }
+                const bool visit_first = t_enter <= hi_split;
+                const bool visit_second = lo_split <= t_exit;
+                if (visit_first && visit_second) {
+                    stack[top++] = {second, lo_split > t_enter ? lo_split : t_enter, t_exit};
+                    index = first;
+                    t_exit = hi_split < t_exit ? hi_split : t_exit;
+                    continue;
+                }
+                if (visit_first || visit_second) {
+                    index = visit_first ? first : second;
+                    continue;
+                }
+                // Neither (only for a NaN-free empty window, which clip_slabs rules out).
+            } else {
+                const std::uint32_t end = n.prim_offset() + n.prim_count();
+                for (std::uint32_t i = n.prim_offset(); i < end; ++i) {
+                    if (visit(prim_ids[i])) {
+                        return true;
+                    }
+                }
+            }
+            // Pop the next subtree whose window starts at or before ray.tmax. Once ray.tmax <=
+            // this leaf's t_exit, the front-to-back order leaves only subtrees starting at or
+            // after it, so this ends the walk; the exception is a ray lying in a split plane,
+            // whose two children share one window and must both be searched.
+            for (;;) {
+                if (top == 0) {
+                    return false;
+                }
+                const Entry e = stack[--top];
+                if (e.t_enter <= ray.tmax) {
+                    index = e.node;
+                    t_enter = e.t_enter;
+                    t_exit = e.t_exit < ray.tmax ? e.t_exit : ray.tmax;
+                    break;
+                }
+            }
+        }
+    }
+};
+
+/// SAH kd-tree (Wald & Havran 2006); see build_sah.cpp.
+[[nodiscard]] KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
+
+/// Spatial-median kd-tree; see build_median.cpp.
+[[nodiscard]] KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
+
+static_assert(Accel<KdTree>);
+
+}  // namespace rtlab

@@ -1,0 +1,225 @@
+// Every registry entry against the brute-force oracle: closest hit, any hit, validate(),
+// determinism and robust traversal, on seeded primitive soups of several sizes.
+
+#include "accel/any_accel.h"
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <concepts>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace rtlab {
+namespace {
+
+/// The oracle's answer for one ray.
+struct Answer {
+    Hit hit;
+    bool occluded = false;
+};
+
+std::vector<Answer> oracle_answers(const test::Soup& soup, const std::vector<Rayf>& rays) {
+    const BruteForce oracle = BruteForce::build(soup.input());
+    std::vector<Answer> out(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        Rayf r = rays[i];
+        oracle.intersect(r, soup.closest_hit(out[i].hit));
+        out[i].occluded = oracle.occluded(rays[i], soup.any_hit());
+    }
+    return out;
+}
+
+/// True when both hold the same structure type and compare equal (structures without == are
+/// reported equal, so this only checks those that can be compared).
+bool same_structure(const AnyAccel& a, const AnyAccel& b) {
+    if (a.index() != b.index()) {
+        return false;
+    }
+    return visit_accel(a, [&](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::equality_comparable<T>) {
+            return s == std::get<T>(b);
+        } else {
+            return true;
+        }
+    });
+}
+
+/// Checks one structure against the oracle's answers, for normal and robust traversal. The
+/// accel's closest hit must have the oracle's t (exactly equal except for rounding of equal
+/// distances); a different primitive is only allowed at an exact tie, checked by re-testing it.
+template <class A>
+void check_against_oracle(const A& accel,
+                          const test::Soup& soup,
+                          const std::vector<Rayf>& rays,
+                          const std::vector<Answer>& expected) {
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const Rayf& ray = rays[i];
+        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
+                ray.tmax);
+        const Hit& want = expected[i].hit;
+
+        Hit robust;
+        Rayf rr = ray;
+        const bool robust_hit = accel.template intersect<true>(rr, soup.closest_hit(robust));
+        REQUIRE(robust_hit == want.valid());
+        Hit normal;
+        Rayf rn = ray;
+        const bool normal_hit = accel.intersect(rn, soup.closest_hit(normal));
+        // Robust traversal finds everything normal traversal finds.
+        if (normal_hit) {
+            REQUIRE(robust_hit);
+            REQUIRE(robust.t <= normal.t);
+        }
+        if (soup.kind == test::SoupKind::boxes) {
+            // Box primitives: a node's computed slab interval contains its children's, so even
+            // the unpadded traversal finds every hit.
+            REQUIRE(normal_hit == want.valid());
+        }
+        if (want.valid()) {
+            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
+            if (robust.prim != want.prim) {
+                const auto again = soup.hit(robust.prim, ray);
+                REQUIRE(again.has_value());
+                CHECK(again->t == want.t);  // an exact tie
+            }
+        }
+        CHECK(accel.template occluded<true>(ray, soup.any_hit()) == expected[i].occluded);
+        if (soup.kind == test::SoupKind::boxes) {
+            CHECK(accel.occluded(ray, soup.any_hit()) == expected[i].occluded);
+        }
+        CHECK(expected[i].occluded == want.valid());
+    }
+}
+
+}  // namespace
+
+TEST_CASE("every registered structure agrees with brute force", "[accel][agreement]") {
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    const auto count = GENERATE(1u, 2u, 17u, 500u);
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    CAPTURE(static_cast<int>(kind), count, seed);
+    const test::Soup soup = test::random_soup(kind, seed, count);
+    const std::vector<Rayf> rays = test::random_rays(soup, seed, count >= 500 ? 400 : 200);
+    const std::vector<Answer> expected = oracle_answers(soup, rays);
+
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = entry.build(soup.input());
+        REQUIRE(accel_validate(accel).empty());
+        REQUIRE(same_structure(accel, entry.build(soup.input())));
+        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+    }
+}
+
+TEST_CASE("structures agree on duplicate, zero-size and unusable primitives",
+          "[accel][agreement]") {
+    // 40 copies of one box, 30 point boxes at one spot, flat boxes, and an empty box that must
+    // never be offered as a hit. (NaN boxes are covered per structure: BruteForce::validate
+    // rejects them.)
+    test::Soup soup;
+    for (int i = 0; i < 40; ++i) {
+        soup.boxes.push_back({{0.2f, 0.2f, 0.2f}, {0.6f, 0.5f, 0.4f}});
+    }
+    for (int i = 0; i < 30; ++i) {
+        soup.boxes.push_back(Bounds3f(Vec3f{0.5f, 0.5f, 0.5f}));
+    }
+    for (int i = 0; i < 20; ++i) {
+        const float x = 0.05f * static_cast<float>(i);
+        soup.boxes.push_back({{x, 0, 0}, {x, 1, 1}});
+    }
+    soup.boxes.push_back(Bounds3f{});
+    const std::vector<Rayf> rays = test::random_rays(soup, 7, 400);
+    const std::vector<Answer> expected = oracle_answers(soup, rays);
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = entry.build(soup.input());
+        REQUIRE(accel_validate(accel).empty());
+        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+    }
+}
+
+TEST_CASE("invalid rays are rejected by every structure", "[accel][agreement]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const Rayf bad[] = {
+        {{nan, 0.5f, 0.5f}, {1, 0, 0}},        {{-1, 0.5f, 0.5f}, {nan, 0, 0}},
+        {{-1, 0.5f, 0.5f}, {0, 0, 0}},         {{-1, 0.5f, 0.5f}, {1, 0, 0}, nan, 10},
+        {{-1, 0.5f, 0.5f}, {1, 0, 0}, 0, nan}, {{-1, 0.5f, 0.5f}, {1, 0, 0}, 2, 1},
+        {{-inf, 0.5f, 0.5f}, {1, 0, 0}},
+    };
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = entry.build(soup.input());
+        visit_accel(accel, [&](const auto& s) {
+            for (const Rayf& ray : bad) {
+                TraversalStats st;
+                Hit h;
+                Rayf r = ray;
+                CHECK_FALSE(s.intersect(r, soup.closest_hit(h), st));
+                CHECK_FALSE(s.occluded(ray, soup.any_hit(), st));
+                CHECK(st.nodes == 0);
+                CHECK(st.prims == 0);
+            }
+        });
+    }
+}
+
+TEST_CASE("SAH BVHs visit far fewer boxes than brute force", "[accel][agreement]") {
+    // Brute force tests all 500 boxes per ray; a BVH tests O(log N) node boxes. (Primitive
+    // counts are not compared: brute force offers only primitives whose own box the window
+    // meets, a BVH every primitive of a leaf it opens.)
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 500);
+    const std::vector<Rayf> rays = test::random_rays(soup, 11, 400);
+    auto count = [&](std::string_view name) {
+        const AnyAccel accel = build_accel(name, soup.input());
+        TraversalStats st;
+        visit_accel(accel, [&](const auto& s) {
+            for (Rayf r : rays) {
+                Hit h;
+                s.intersect(r, soup.closest_hit(h), st);
+            }
+        });
+        return st;
+    };
+    const TraversalStats brute = count("brute");
+    for (const std::string_view name : {"bvh:binned", "bvh:sweep"}) {
+        CAPTURE(name);
+        const TraversalStats st = count(name);
+        CHECK(st.rays == brute.rays);
+        CHECK(st.nodes * 4 < brute.nodes);
+        CHECK(st.prims < 8 * st.rays);  // about two leaves of up to 4 per ray
+    }
+}
+
+TEST_CASE("build_accel names the known structures on a typo", "[accel][registry]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 1, 10);
+    CHECK(find_accel("bvh:sweep") != nullptr);
+    CHECK(find_accel("bvh:nope") == nullptr);
+    CHECK_THROWS_WITH(build_accel("bvh:nope", soup.input()),
+                      Catch::Contains("bvh:binned") && Catch::Contains("brute"));
+    for (const AccelEntry& e : accel_registry()) {
+        CHECK(!e.description.empty());
+        CHECK(find_accel(e.name) == &e);
+    }
+}
+
+TEST_CASE("every structure agrees with brute force on 100,000 primitives",
+          "[accel][agreement][.slow]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 100000);
+    const std::vector<Rayf> rays = test::random_rays(soup, 5, 48);
+    const std::vector<Answer> expected = oracle_answers(soup, rays);
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = entry.build(soup.input());
+        REQUIRE(accel_validate(accel).empty());
+        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+    }
+}
+
+}  // namespace rtlab

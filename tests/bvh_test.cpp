@@ -1,0 +1,267 @@
+// BVH node layout, tree invariants and builder-specific edge cases.
+
+#include "accel/bvh/bvh.h"
+
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace rtlab {
+namespace {
+
+constexpr BvhBuilder all_builders[] = {BvhBuilder::median, BvhBuilder::binned_sah,
+                                       BvhBuilder::sweep_sah, BvhBuilder::lbvh};
+
+Bvh build_with(const std::vector<Bounds3f>& boxes,
+               BvhBuilder b,
+               std::uint32_t max_leaf = 4,
+               std::uint32_t bins = 16) {
+    Bvh::Config cfg;
+    cfg.builder = b;
+    cfg.max_leaf_size = max_leaf;
+    cfg.bin_count = bins;
+    return Bvh::build({boxes, {}}, cfg);
+}
+
+/// Checks what validate() cannot see without the input: every usable box is referenced, every
+/// leaf box contains its primitives' boxes, node boxes are the tight unions of their contents,
+/// and inner nodes' children are adjacent and stored after them.
+void check_layout(const Bvh& bvh, const std::vector<Bounds3f>& boxes) {
+    REQUIRE(bvh.validate().empty());
+    std::vector<char> referenced(boxes.size(), 0);
+    for (const std::uint32_t id : bvh.prim_ids) {
+        referenced[id] = 1;
+    }
+    std::uint32_t unusable = 0;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const Bounds3f& b = boxes[i];
+        const bool usable = is_finite(b.lo) && is_finite(b.hi) && b.lo.x <= b.hi.x &&
+                            b.lo.y <= b.hi.y && b.lo.z <= b.hi.z;
+        CHECK(static_cast<bool>(referenced[i]) == usable);
+        unusable += usable ? 0 : 1;
+    }
+    CHECK(bvh.unreferenced_count == unusable);
+    for (std::size_t n = 0; n < bvh.nodes.size(); ++n) {
+        const BvhNode& node = bvh.nodes[n];
+        Bounds3f tight;
+        if (node.is_leaf()) {
+            for (std::uint32_t s = node.first; s < node.first + node.prim_count(); ++s) {
+                tight.extend(boxes[bvh.prim_ids[s]]);
+            }
+        } else {
+            CHECK(node.first > n);
+            CHECK(node.first % 2 == 1);  // pairs start after the root: 1, 3, 5, ...
+            tight = merge(bvh.nodes[node.first].bounds(), bvh.nodes[node.first + 1].bounds());
+        }
+        CHECK(tight == node.bounds());
+    }
+}
+
+}  // namespace
+
+TEST_CASE("BvhNode keeps Wald's 32-byte layout", "[accel][bvh]") {
+    STATIC_REQUIRE(sizeof(BvhNode) == 32);
+    STATIC_REQUIRE(alignof(BvhNode) == 32);
+    const Bounds3f box{{0, 1, 2}, {3, 4, 5}};
+    const BvhNode leaf = BvhNode::make_leaf(box, 7, BvhNode::max_prim_count);
+    CHECK(leaf.is_leaf());
+    CHECK(leaf.first == 7);
+    CHECK(leaf.prim_count() == BvhNode::max_prim_count);
+    CHECK(leaf.bounds() == box);
+    const BvhNode inner = BvhNode::make_inner(box, 9, 2);
+    CHECK_FALSE(inner.is_leaf());
+    CHECK(inner.first == 9);
+    CHECK(inner.axis() == 2);
+    CHECK(inner.prim_count() == 0);
+}
+
+TEST_CASE("every builder gives a valid, tight, deterministic tree", "[accel][bvh]") {
+    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    const auto count = GENERATE(0u, 1u, 2u, 3u, 17u, 1000u);
+    const auto max_leaf = GENERATE(1u, 4u, 8u);
+    CAPTURE(static_cast<int>(builder), static_cast<int>(kind), count, max_leaf);
+    const test::Soup soup = test::random_soup(kind, 42, count);
+    const Bvh bvh = build_with(soup.boxes, builder, max_leaf);
+    check_layout(bvh, soup.boxes);
+    CHECK(bvh == build_with(soup.boxes, builder, max_leaf));
+    CHECK(bvh.prim_count == count);
+    const AccelInfo info = bvh.info();
+    CHECK(info.nodes == bvh.nodes.size());
+    CHECK(info.leaves == (bvh.nodes.size() + 1) / 2);
+    CHECK(info.bytes == bvh.nodes.size() * 32 + bvh.prim_ids.size() * 4);
+    if (count == 0) {
+        CHECK(bvh.nodes.empty());
+        CHECK(bvh.bounds().empty());
+    } else {
+        CHECK(bvh.bounds() == soup.scene_bounds());
+        CHECK(info.sah_cost >= 1.0);  // at least the root's own cost
+    }
+}
+
+TEST_CASE("SAH builders beat the median and LBVH trees on the SAH metric", "[accel][bvh]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 9, 2000);
+    const double median = build_with(soup.boxes, BvhBuilder::median).info().sah_cost;
+    const double binned = build_with(soup.boxes, BvhBuilder::binned_sah).info().sah_cost;
+    const double sweep = build_with(soup.boxes, BvhBuilder::sweep_sah).info().sah_cost;
+    const double lbvh = build_with(soup.boxes, BvhBuilder::lbvh).info().sah_cost;
+    CAPTURE(median, binned, sweep, lbvh);
+    CHECK(sweep <= binned * 1.02);
+    CHECK(binned < median);
+    CHECK(sweep < lbvh);
+}
+
+TEST_CASE("binned SAH handles one and two bins", "[accel][bvh]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 5, 300);
+    const auto bins = GENERATE(0u, 1u, 2u, 3u, 64u);
+    CAPTURE(bins);
+    const Bvh bvh = build_with(soup.boxes, BvhBuilder::binned_sah, 4, bins);
+    check_layout(bvh, soup.boxes);
+    CHECK(bvh.config.bin_count == std::max(bins, 1u));
+    if (bins <= 1) {
+        // One bin has no split candidate: the builder falls back to the object median.
+        CHECK(bvh.nodes == build_with(soup.boxes, BvhBuilder::median).nodes);
+    }
+}
+
+TEST_CASE("builders split equal centroids and duplicates by count", "[accel][bvh]") {
+    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    CAPTURE(static_cast<int>(builder));
+    // 100 boxes with one centre: 50 identical, 50 of growing size.
+    std::vector<Bounds3f> boxes;
+    for (int i = 0; i < 100; ++i) {
+        const float h = i < 50 ? 0.25f : 0.01f * static_cast<float>(i);
+        boxes.push_back({{0.5f - h, 0.5f - h, 0.5f - h}, {0.5f + h, 0.5f + h, 0.5f + h}});
+    }
+    const Bvh bvh = build_with(boxes, builder, 3);
+    check_layout(bvh, boxes);
+    CHECK(bvh.info().max_depth <= 7);  // balanced: ceil(log2(100 / 3)) = 6 levels of splits
+}
+
+TEST_CASE("LBVH codes: bit interleaving and duplicate codes", "[accel][bvh]") {
+    // Points on a 4 x 4 x 4 lattice, each twice: Morton order groups the duplicates, and with 2
+    // bits per axis every code is distinct across lattice points.
+    std::vector<Bounds3f> boxes;
+    for (int i = 0; i < 64; ++i) {
+        const Vec3f p{static_cast<float>(i % 4), static_cast<float>(i / 4 % 4),
+                      static_cast<float>(i / 16)};
+        boxes.emplace_back(p);
+        boxes.emplace_back(p);
+    }
+    Bvh::Config cfg;
+    cfg.builder = BvhBuilder::lbvh;
+    cfg.morton_bits = 2;
+    cfg.max_leaf_size = 2;
+    const Bvh bvh = Bvh::build({boxes, {}}, cfg);
+    check_layout(bvh, boxes);
+    // The radix tree over 64 distinct codes is complete: 6 levels above the duplicate pairs.
+    CHECK(bvh.info().max_depth == 6);
+    CHECK(bvh.info().leaves == 64);
+    for (const BvhNode& n : bvh.nodes) {
+        if (n.is_leaf()) {
+            CHECK(n.prim_count() == 2);
+            CHECK(n.lo == n.hi);  // both primitives at the same lattice point
+        }
+    }
+    // The root splits on the top code bit, which is x's highest bit.
+    CHECK(bvh.nodes[0].axis() == 0);
+}
+
+TEST_CASE("depth stays within 64 on exponentially spaced primitives", "[accel][bvh]") {
+    // Centres at 1.4^i: every SAH split peels off the largest box, which would nest 300 levels
+    // deep without the depth guard.
+    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    CAPTURE(static_cast<int>(builder));
+    std::vector<Bounds3f> boxes;
+    float x = 1.0f;
+    for (int i = 0; i < 250; ++i) {
+        boxes.push_back({{x, 0, 0}, {x * 1.2f, 1, 1}});
+        x *= 1.4f;
+    }
+    const Bvh bvh = build_with(boxes, builder, 1);
+    check_layout(bvh, boxes);
+    CHECK(bvh.info().max_depth <= 64);
+}
+
+TEST_CASE("empty, NaN and infinite boxes are never referenced", "[accel][bvh]") {
+    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    CAPTURE(static_cast<int>(builder));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<Bounds3f> boxes{Bounds3f{},
+                                {{nan, 0, 0}, {1, 1, 1}},
+                                {{0, 0, 0}, {1, 1, 1}},
+                                {{-inf, 0, 0}, {1, 1, 1}},
+                                {{2, 0, 0}, {1, 1, 1}},
+                                {{0, 0, 0}, {0, 0, 0}}};
+    const Bvh bvh = build_with(boxes, builder, 1);
+    check_layout(bvh, boxes);
+    CHECK(bvh.prim_ids.size() == 2);
+    CHECK(bvh.unreferenced_count == 4);
+    const Bvh none = build_with({Bounds3f{}, Bounds3f{}}, builder);
+    CHECK(none.nodes.empty());
+    CHECK(none.validate().empty());
+    Rayf r{{-1, 0.5f, 0.5f}, {1, 0, 0}};
+    CHECK_FALSE(none.intersect(r, [](std::uint32_t, Rayf&) { return true; }));
+}
+
+TEST_CASE("validate reports broken trees", "[accel][bvh]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 8, 50);
+    const Bvh good = build_with(soup.boxes, BvhBuilder::sweep_sah);
+    REQUIRE(good.validate().empty());
+    Bvh b = good;
+    b.prim_ids[0] = b.prim_ids[1];
+    CHECK_FALSE(b.validate().empty());
+    b = good;
+    b.nodes[1].hi.x += 10;  // child outside parent
+    CHECK_FALSE(b.validate().empty());
+    b = good;
+    b.config.max_leaf_size = 1;  // leaves now too big
+    CHECK_FALSE(b.validate().empty());
+    b = good;
+    b.nodes[0].first = 0;  // cycle
+    CHECK_FALSE(b.validate().empty());
+}
+
+TEST_CASE("closest-hit traversal visits the near child first", "[accel][bvh]") {
+    // Two separated boxes on x: a ray along +x opens the left leaf first and, having hit it,
+    // culls the right one; along -x the other way round.
+    const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 1}}};
+    const Bvh bvh = build_with(boxes, BvhBuilder::sweep_sah, 1);
+    test::Soup soup;
+    soup.boxes = boxes;
+    for (const float sign : {1.0f, -1.0f}) {
+        Rayf r{{sign > 0 ? -1.0f : 4.0f, 0.5f, 0.5f}, {sign, 0, 0}};
+        Hit h;
+        TraversalStats st;
+        CHECK(bvh.intersect(r, soup.closest_hit(h), st));
+        CHECK(h.prim == (sign > 0 ? 0u : 1u));
+        CHECK(st.prims == 1);
+        CHECK(st.nodes == 3);  // root, near leaf, far leaf culled by the shrunk window
+    }
+}
+
+TEST_CASE("info() reports the analytic SAH cost of a two-leaf tree", "[accel][bvh]") {
+    // Root [0,3]x[0,1]x[0,1] has area 14, each unit-cube leaf area 6: cost = Ct + Ci * 12 / 14.
+    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    CAPTURE(static_cast<int>(builder));
+    const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 1}}};
+    Bvh::Config cfg;
+    cfg.builder = builder;
+    cfg.max_leaf_size = 1;
+    cfg.traversal_cost = 2.0f;
+    cfg.intersection_cost = 3.0f;
+    const AccelInfo info = Bvh::build({boxes, {}}, cfg).info();
+    CHECK(info.sah_cost == Approx(2.0 + 3.0 * 12.0 / 14.0));
+    CHECK(info.nodes == 3);
+    CHECK(info.leaves == 2);
+    CHECK(info.max_depth == 1);
+    CHECK(info.refs_per_prim == 1.0);
+    CHECK(info.bytes_per_prim == Approx((3 * 32 + 2 * 4) / 2.0));
+}
+}  // namespace rtlab

@@ -1,0 +1,274 @@
+// Uniform grid: Woo's resolution rule, agreement with brute force on seeded soups (with and
+// without a clip callback), rays on cell boundaries, the hit beyond the first cell a primitive
+// overlaps, mailboxing, invariants, determinism and traversal counts.
+
+#include "accel/grid/grid.h"
+
+#include "accel/brute_force.h"
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+namespace rtlab {
+namespace {
+
+/// Rays starting on cell boundary planes of g: lying in the plane, along it, and crossing it.
+std::vector<Rayf> cell_boundary_rays(const Grid& g, std::uint64_t seed, std::size_t count) {
+    test::Rng rng(seed);
+    std::vector<Rayf> rays;
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t a = rng.below(3);
+        Rayf r;
+        r.org = rng.point_in(g.box);
+        const std::uint32_t k = rng.below(g.res[a] + 1);
+        r.org[a] = g.box.lo[a] + static_cast<float>(k) * g.cell_size[a];
+        r.dir = rng.direction();
+        if (i % 3 == 0) {
+            r.dir[a] = 0;  // in the boundary plane
+        } else if (i % 3 == 1) {
+            r.org[(a + 1) % 3] =
+                g.box.lo[(a + 1) % 3] +
+                static_cast<float>(rng.below(g.res[(a + 1) % 3] + 1)) * g.cell_size[(a + 1) % 3];
+            r.dir = {0, 0, 0};
+            r.dir[(a + 2) % 3] = rng.below(2) ? 1.0f : -1.0f;  // along a cell edge line
+        }
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+/// Closest hit (normal and robust) and any hit agree with brute force on every ray.
+void check_agreement(const Grid& grid, const test::Soup& soup, const std::vector<Rayf>& rays) {
+    const BruteForce oracle = BruteForce::build(soup.input());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const Rayf& ray = rays[i];
+        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
+                ray.tmax);
+        Hit want, normal, robust;
+        Rayf ro = ray, rn = ray, rr = ray;
+        const bool want_hit = oracle.intersect(ro, soup.closest_hit(want));
+        REQUIRE(grid.intersect(rn, soup.closest_hit(normal)) == want_hit);
+        REQUIRE(grid.intersect<true>(rr, soup.closest_hit(robust)) == want_hit);
+        if (want_hit) {
+            CHECK(normal.t == Approx(want.t).epsilon(1e-6));
+            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
+            for (const Hit& h : {normal, robust}) {
+                if (h.prim != want.prim) {
+                    const auto again = soup.hit(h.prim, ray);
+                    REQUIRE(again.has_value());
+                    CHECK(again->t == want.t);  // an exact tie
+                }
+            }
+        }
+        const bool want_occluded = oracle.occluded(ray, soup.any_hit());
+        CHECK(grid.occluded(ray, soup.any_hit()) == want_occluded);
+        CHECK(grid.occluded<true>(ray, soup.any_hit()) == want_occluded);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("grid resolution follows Woo's rule", "[accel][grid]") {
+    // Box 2 x 1 x 1, N = 100, lambda = 4: cbrt(400 / 2) = 5.85 cells per unit.
+    std::vector<Bounds3f> boxes(100, Bounds3f{{0, 0, 0}, {0.1f, 0.1f, 0.1f}});
+    boxes[0] = {{0, 0, 0}, {2, 1, 1}};
+    const Grid g = Grid::build({boxes, {}});
+    CHECK(g.res == std::array<std::uint32_t, 3>{12, 6, 6});
+    CHECK(g.cell_start.size() == 12 * 6 * 6 + 1);
+    // A flat scene gets one cell across its zero extent and Woo's rule in 2-D over the rest.
+    std::vector<Bounds3f> flat(100, Bounds3f{{0, 0, 0}, {1, 1, 0}});
+    const Grid f = Grid::build({flat, {}});
+    CHECK(f.res == std::array<std::uint32_t, 3>{20, 20, 1});
+    // The clamp.
+    GridConfig cfg;
+    cfg.max_res = 3;
+    CHECK(Grid::build({boxes, {}}, cfg).res == std::array<std::uint32_t, 3>{3, 3, 3});
+}
+
+TEST_CASE("grid agrees with brute force", "[accel][grid]") {
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    const float density = GENERATE(0.5f, 4.0f);
+    const bool with_clip = GENERATE(false, true);
+    const auto count = GENERATE(1u, 2u, 17u, 500u);
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    CAPTURE(static_cast<int>(kind), density, with_clip, count, seed);
+    const test::Soup soup = test::random_soup(kind, seed, count);
+    BuildInput in = soup.input();
+    if (with_clip) {
+        in.clip = [&soup](std::uint32_t id, const Bounds3f& box) {
+            return intersection(soup.boxes[id], box);
+        };
+    }
+    GridConfig cfg;
+    cfg.density = density;
+    const Grid grid = Grid::build(in, cfg);
+    REQUIRE(grid.validate().empty());
+    REQUIRE(grid == Grid::build(in, cfg));
+    const AccelInfo info = grid.info();
+    CHECK(info.nodes == grid.cell_count());
+    CHECK(info.refs_per_prim >= 1.0);
+
+    std::vector<Rayf> rays = test::random_rays(soup, seed, 200);
+    const std::vector<Rayf> on_boundaries = cell_boundary_rays(grid, seed, 60);
+    rays.insert(rays.end(), on_boundaries.begin(), on_boundaries.end());
+    check_agreement(grid, soup, rays);
+}
+
+TEST_CASE("grid handles primitives and rays on cell boundaries", "[accel][grid]") {
+    // Boxes whose faces lie exactly on the cell planes of a 4 x 4 x 4 grid over [0, 4]^3, flat
+    // boxes in those planes, duplicates and corner points.
+    test::Soup soup;
+    for (int x = 0; x < 4; ++x) {
+        for (int y = 0; y < 4; ++y) {
+            for (int z = 0; z < 4; ++z) {
+                const Vec3f c{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
+                if ((x + y + z) % 2 == 0) {
+                    soup.boxes.push_back({c, c + Vec3f{1, 1, 1}});
+                } else if (z == 1) {
+                    soup.boxes.push_back({c, c + Vec3f{1, 0, 1}});
+                    soup.boxes.push_back(soup.boxes.back());
+                } else {
+                    soup.boxes.push_back(Bounds3f(c));
+                }
+            }
+        }
+    }
+    GridConfig cfg;
+    cfg.max_res = 4;
+    const Grid grid = Grid::build(soup.input(), cfg);
+    REQUIRE(grid.res == std::array<std::uint32_t, 3>{4, 4, 4});
+    REQUIRE(grid.validate().empty());
+    check_agreement(grid, soup, cell_boundary_rays(grid, 3, 400));
+    check_agreement(grid, soup, test::random_rays(soup, 3, 200));
+}
+
+TEST_CASE("grid finds a near hit beyond the first cell of a long primitive", "[accel][grid]") {
+    // L: a long slanted triangle spanning every cell the ray crosses, hit at x = 9; S: a small
+    // triangle on the ray at x = 5 (nearer) or 9.5 (farther). L is offered in the first cell.
+    const float s_x = GENERATE(5.0f, 9.5f);
+    CAPTURE(s_x);
+    test::Soup soup;
+    soup.kind = test::SoupKind::triangles;
+    const auto add = [&](Vec3f a, Vec3f b, Vec3f c) {
+        soup.triangles.push_back(MollerTrumbore<float>::prepare({a, b, c}));
+        soup.boxes.push_back(MollerTrumbore<float>::bounds(soup.triangles.back()));
+    };
+    add({0, -1, -0.625f}, {0, 2, -0.625f}, {10, 0.5f, 0.625f});  // L, id 0
+    add({s_x, 0, 0}, {s_x, 1, 0}, {s_x, 0.5f, 1});               // S, id 1
+    for (int i = 0; i < 40; ++i) {
+        const float x = 0.25f * static_cast<float>(i);
+        add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
+    }
+    const Grid grid = Grid::build(soup.input());
+    REQUIRE(grid.res[0] > 4);
+    const Rayf ray{{-1, 0.5f, 0.5f}, {1, 0, 0}};
+    std::vector<std::uint32_t> order;
+    Hit h;
+    Rayf r = ray;
+    const auto record = soup.closest_hit(h);
+    TraversalStats st;
+    REQUIRE(grid.intersect(
+        r,
+        [&](std::uint32_t id, Rayf& rr) {
+            order.push_back(id);
+            return record(id, rr);
+        },
+        st));
+    REQUIRE_FALSE(order.empty());
+    CHECK(order.front() == 0u);  // L first, in the first cell, with its hit far beyond it
+    if (s_x < 9.0f) {
+        CHECK(h.prim == 1u);
+        CHECK(h.t == Approx(6.0f));
+    } else {
+        CHECK(h.prim == 0u);
+        CHECK(h.t == Approx(10.0f));
+    }
+    // Mailboxing: L lies in every cell the ray crosses but is tested once.
+    CHECK(std::count(order.begin(), order.end(), 0u) == 1);
+    CHECK(st.nodes > 2);
+    CHECK(grid.occluded(ray, soup.any_hit()));
+}
+
+TEST_CASE("grid of no usable primitive is empty and never hit", "[accel][grid]") {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<Bounds3f> boxes{Bounds3f{}, {{nan, 0, 0}, {1, 1, 1}}};
+    for (const std::size_t n : {std::size_t{0}, std::size_t{2}}) {
+        const Grid g = Grid::build({std::span(boxes).first(n), {}});
+        CHECK(g.validate().empty());
+        CHECK(g.cell_count() == 0);
+        Rayf r{{-1, 0.5f, 0.5f}, {1, 0, 0}};
+        TraversalStats st;
+        CHECK_FALSE(g.intersect(
+            r, [](std::uint32_t, Rayf&) { return true; }, st));
+        CHECK_FALSE(g.occluded(
+            r, [](std::uint32_t, const Rayf&) { return true; }, st));
+        CHECK(st.nodes == 0);
+    }
+    // A single point primitive: one cell.
+    const std::vector<Bounds3f> point{Bounds3f(Vec3f{1, 2, 3})};
+    const Grid p = Grid::build({point, {}});
+    CHECK(p.res == std::array<std::uint32_t, 3>{1, 1, 1});
+    CHECK(p.validate().empty());
+}
+
+TEST_CASE("grid rejects invalid rays before touching a cell", "[accel][grid]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
+    const Grid grid = Grid::build(soup.input());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (const Rayf& ray : {Rayf{{nan, 0, 0}, {1, 0, 0}}, Rayf{{0, 0, 0}, {0, 0, 0}},
+                            Rayf{{0, 0, 0}, {1, 0, 0}, 2, 1}}) {
+        TraversalStats st;
+        Hit h;
+        Rayf r = ray;
+        CHECK_FALSE(grid.intersect(r, soup.closest_hit(h), st));
+        CHECK_FALSE(grid.occluded(ray, soup.any_hit(), st));
+        CHECK(st.nodes == 0);
+        CHECK(st.rays == 0);
+    }
+}
+
+TEST_CASE("grid tests far fewer primitives than brute force", "[accel][grid]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 500);
+    const std::vector<Rayf> rays = test::random_rays(soup, 11, 400);
+    const auto count = [&](const auto& accel) {
+        TraversalStats st;
+        for (Rayf r : rays) {
+            Hit h;
+            accel.intersect(r, soup.closest_hit(h), st);
+        }
+        return st;
+    };
+    const TraversalStats brute = count(BruteForce::build(soup.input()));
+    const TraversalStats grid = count(Grid::build(soup.input()));
+    CHECK(grid.rays == brute.rays);
+    CHECK(grid.prims * 5 < brute.nodes);
+}
+
+TEST_CASE("grid figures on a 10,000-primitive soup", "[.report][grid]") {
+    for (const auto kind : {test::SoupKind::triangles, test::SoupKind::boxes}) {
+        const test::Soup soup = test::random_soup(kind, 42, 10000);
+        const std::vector<Rayf> rays = test::random_rays(soup, 42, 20000);
+        const Grid grid = Grid::build(soup.input());
+        TraversalStats st;
+        for (Rayf r : rays) {
+            Hit h;
+            grid.intersect(r, soup.closest_hit(h), st);
+        }
+        const AccelInfo info = grid.info();
+        std::printf(
+            "grid:uniform %s: nodes/ray %.2f prims/ray %.2f res %ux%ux%u refs/prim %.2f "
+            "sah %.2f\n",
+            kind == test::SoupKind::boxes ? "boxes" : "triangles",
+            static_cast<double>(st.nodes) / static_cast<double>(st.rays),
+            static_cast<double>(st.prims) / static_cast<double>(st.rays), grid.res[0], grid.res[1],
+            grid.res[2], info.refs_per_prim, info.sah_cost);
+        CHECK(grid.validate().empty());
+    }
+}
+
+}  // namespace rtlab
