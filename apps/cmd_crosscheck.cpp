@@ -1,5 +1,9 @@
 // rtlab crosscheck: runs intersection methods in float and double on seeded ray sets and compares
 // each answer with CGAL's exact predicates.
+#include "apps/args.h"
+#include "apps/commands.h"
+#include "crosscheck/crosscheck.h"
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <fmt/format.h>
@@ -9,9 +13,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include "apps/commands.h"
-#include "crosscheck/crosscheck.h"
 
 namespace rtlab::app {
 
@@ -27,19 +28,6 @@ struct CrosscheckArgs {
     bool by_set = false;
 };
 
-std::vector<std::string> split_commas(const std::string& s) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    while (start <= s.size()) {
-        const std::size_t end = std::min(s.find(',', start), s.size());
-        if (end > start) {
-            out.push_back(s.substr(start, end - start));
-        }
-        start = end + 1;
-    }
-    return out;
-}
-
 std::string format_err(double e) {
     return std::isnan(e) ? std::string("-") : fmt::format("{:.2e}", e);
 }
@@ -53,8 +41,8 @@ void print_table(const std::vector<xcheck::Row>& rows, bool by_set) {
         std::cout << fmt::format(
             "{:<9} {:<17} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9.2f}\n", r.prim,
             r.method, r.precision, by_set ? fmt::format("{:<10} ", r.set) : "", r.rays, r.agree,
-            r.false_hit, r.false_miss, format_err(r.max_rel_t_err),
-            format_err(r.median_rel_t_err), r.ns_per_test);
+            r.false_hit, r.false_miss, format_err(r.max_rel_t_err), format_err(r.median_rel_t_err),
+            r.ns_per_test);
     }
 }
 

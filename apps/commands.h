@@ -20,4 +20,23 @@ struct Command {
 /// `rtlab crosscheck`: every intersection method against CGAL's exact predicates.
 Command add_crosscheck(CLI::App& root);
 
+/// `rtlab rays`: deterministic ray sets for a scene.
+Command add_rays(CLI::App& root);
+
+/// `rtlab trace`: traces a ray file through a scene, prints one JSON object.
+Command add_trace(CLI::App& root);
+
+/// `rtlab compare`: compares two hit files.
+Command add_compare(CLI::App& root);
+
+/// `rtlab list`: structures and intersection methods.
+Command add_list(CLI::App& root);
+
+/// `rtlab gen`: procedural scenes (sphere flake, SPD family, stress scenes) to scene JSON or a
+/// mesh.
+Command add_gen(CLI::App& root);
+
+/// `rtlab info`: counts, bounds, mesh statistics and features of a scene or mesh file.
+Command add_info(CLI::App& root);
+
 }  // namespace rtlab::app

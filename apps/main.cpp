@@ -1,19 +1,34 @@
 // rtlab: the command line. One subcommand per job; errors are one line on stderr and a non-zero
 // exit code, never a crash or a half-written file.
+#include "apps/commands.h"
+
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <vector>
-
-#include "apps/commands.h"
 
 int main(int argc, char** argv) {
     CLI::App root{"rtlab: a testbed for ray-tracing acceleration structures and intersectors"};
     root.require_subcommand(1);
-    root.set_version_flag("--version", "rtlab 0.1.0");
+#ifdef NDEBUG
+    constexpr const char* build = "release";
+#else
+    constexpr const char* build = "debug";
+#endif
+    root.set_version_flag("--version", std::string("rtlab 0.1.0 (") + build + ", " +
+#ifdef __clang__
+                                           "clang "
+#else
+                                           "g++ "
+#endif
+                                           __VERSION__ +
+                                           ")");
 
     const std::vector<rtlab::app::Command> commands{
-        rtlab::app::add_crosscheck(root),
+        rtlab::app::add_crosscheck(root), rtlab::app::add_rays(root), rtlab::app::add_trace(root),
+        rtlab::app::add_compare(root),    rtlab::app::add_list(root), rtlab::app::add_info(root),
+        rtlab::app::add_gen(root),
     };
 
     try {

@@ -1,0 +1,112 @@
+// Ray and hit files: raw little-endian records (see binary_io.h).
+#include "trace/binary_io.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+
+namespace rtlab {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "ray and hit files are little-endian; add byte swapping for this host");
+static_assert(sizeof(float) == 4 && std::numeric_limits<float>::is_iec559);
+
+constexpr std::size_t ray_record = 8 * sizeof(float);
+constexpr std::size_t hit_record = 4 * sizeof(float);
+
+std::string read_all(const std::filesystem::path& file, std::size_t record, const char* what) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) {
+        throw Error(file.string() + ": no such " + what + " file");
+    }
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) {
+        throw Error(file.string() + ": cannot read");
+    }
+    if (bytes.size() % record != 0) {
+        throw Error(file.string() + ": size " + std::to_string(bytes.size()) +
+                    " bytes is not a multiple of the " + std::to_string(record) + "-byte " + what +
+                    " record");
+    }
+    return bytes;
+}
+
+}  // namespace
+
+std::vector<Rayf> load_rays(const std::filesystem::path& file) {
+    const std::string bytes = read_all(file, ray_record, "ray");
+    std::vector<Rayf> rays(bytes.size() / ray_record);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        float v[8];
+        std::memcpy(v, bytes.data() + i * ray_record, ray_record);
+        Rayf& r = rays[i];
+        r.org = {v[0], v[1], v[2]};
+        r.dir = {v[3], v[4], v[5]};
+        r.tmin = v[6];
+        r.tmax = v[7];
+        const char* problem = nullptr;
+        if (!is_finite(r.org)) {
+            problem = "origin is not finite";
+        } else if (!is_finite(r.dir)) {
+            problem = "direction is not finite";
+        } else if (max_component(abs(r.dir)) < std::numeric_limits<float>::min()) {
+            problem = "direction is zero or denormal";
+        } else if (std::isnan(r.tmin) || std::isnan(r.tmax)) {
+            problem = "tmin or tmax is NaN";
+        } else if (r.tmin > r.tmax) {
+            problem = "tmin > tmax";
+        }
+        if (problem != nullptr) {
+            throw Error(file.string() + ": ray " + std::to_string(i) + ": " + problem);
+        }
+    }
+    return rays;
+}
+
+void save_rays(const std::filesystem::path& file, std::span<const Rayf> rays) {
+    std::string bytes(rays.size() * ray_record, '\0');
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const Rayf& r = rays[i];
+        const float v[8] = {r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax};
+        std::memcpy(bytes.data() + i * ray_record, v, ray_record);
+    }
+    write_file_atomically(file, bytes);
+}
+
+void save_hits(const std::filesystem::path& file, std::span<const Hit> hits) {
+    std::string bytes(hits.size() * hit_record, '\0');
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        const Hit& h = hits[i];
+        char* p = bytes.data() + i * hit_record;
+        std::memcpy(p, &h.t, 4);
+        std::memcpy(p + 4, &h.prim, 4);
+        std::memcpy(p + 8, &h.u, 4);
+        std::memcpy(p + 12, &h.v, 4);
+    }
+    write_file_atomically(file, bytes);
+}
+
+std::vector<Hit> load_hits(const std::filesystem::path& file) {
+    const std::string bytes = read_all(file, hit_record, "hit");
+    std::vector<Hit> hits(bytes.size() / hit_record);
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        const char* p = bytes.data() + i * hit_record;
+        std::memcpy(&hits[i].t, p, 4);
+        std::memcpy(&hits[i].prim, p + 4, 4);
+        std::memcpy(&hits[i].u, p + 8, 4);
+        std::memcpy(&hits[i].v, p + 12, 4);
+    }
+    return hits;
+}
+
+}  // namespace rtlab

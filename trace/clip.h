@@ -1,0 +1,53 @@
+#pragma once
+// Exact-ish clipping of a triangle to a box (Sutherland & Hodgman 1974, polygon clipping against
+// the six slab planes), for kd-tree perfect splits (Havran 2000; Wald & Havran 2006). The result
+// is the bounds of the clipped polygon, intersected with the box to absorb rounding.
+
+#include "intersect/bounds.h"
+#include "intersect/vec.h"
+
+#include <array>
+
+namespace rtlab {
+
+/// Bounds of the part of triangle (a, b, c) inside box; empty when they do not overlap.
+inline Bounds3f clip_triangle_bounds(const Vec3f& a,
+                                     const Vec3f& b,
+                                     const Vec3f& c,
+                                     const Bounds3f& box) {
+    // A convex polygon clipped by 6 planes has at most 3 + 6 vertices.
+    std::array<Vec3f, 9> poly{a, b, c}, next{};
+    std::size_t n = 3;
+    for (std::size_t axis = 0; axis < 3 && n > 0; ++axis) {
+        for (int side = 0; side < 2 && n > 0; ++side) {
+            const float plane = side == 0 ? box.lo[axis] : box.hi[axis];
+            const auto inside = [&](const Vec3f& p) {
+                return side == 0 ? p[axis] >= plane : p[axis] <= plane;
+            };
+            std::size_t m = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vec3f& p = poly[i];
+                const Vec3f& q = poly[(i + 1) % n];
+                const bool pin = inside(p), qin = inside(q);
+                if (pin) {
+                    next[m++] = p;
+                }
+                if (pin != qin && m < next.size()) {
+                    const float s = (plane - p[axis]) / (q[axis] - p[axis]);
+                    Vec3f x = p + (q - p) * s;
+                    x[axis] = plane;  // exactly on the plane despite rounding
+                    next[m++] = x;
+                }
+            }
+            poly = next;
+            n = m;
+        }
+    }
+    Bounds3f out;
+    for (std::size_t i = 0; i < n; ++i) {
+        out.extend(poly[i]);
+    }
+    return n == 0 ? Bounds3f{} : intersection(out, box);
+}
+
+}  // namespace rtlab
