@@ -2,6 +2,7 @@
 // determinism and robust traversal, on seeded primitive soups of several sizes.
 
 #include "accel/any_accel.h"
+#include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -96,6 +97,18 @@ void check_against_oracle(const A& accel,
     }
 }
 
+/// Builds every registered structure on soup, requires it to be valid and checks it against the
+/// oracle's answers on rays.
+void check_every_structure(const test::Soup& soup, const std::vector<Rayf>& rays) {
+    const std::vector<Answer> expected = oracle_answers(soup, rays);
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = entry.build(soup.input());
+        REQUIRE(accel_validate(accel).empty());
+        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+    }
+}
+
 }  // namespace
 
 TEST_CASE("every registered structure agrees with brute force", "[accel][agreement]") {
@@ -134,13 +147,7 @@ TEST_CASE("structures agree on duplicate, zero-size and unusable primitives",
     }
     soup.boxes.push_back(Bounds3f{});
     const std::vector<Rayf> rays = test::random_rays(soup, 7, 400);
-    const std::vector<Answer> expected = oracle_answers(soup, rays);
-    for (const AccelEntry& entry : accel_registry()) {
-        CAPTURE(entry.name);
-        const AnyAccel accel = entry.build(soup.input());
-        REQUIRE(accel_validate(accel).empty());
-        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
-    }
+    check_every_structure(soup, rays);
 }
 
 TEST_CASE("invalid rays are rejected by every structure", "[accel][agreement]") {
@@ -158,11 +165,7 @@ TEST_CASE("invalid rays are rejected by every structure", "[accel][agreement]") 
         const AnyAccel accel = entry.build(soup.input());
         visit_accel(accel, [&](const auto& s) {
             for (const Rayf& ray : bad) {
-                TraversalStats st;
-                Hit h;
-                Rayf r = ray;
-                CHECK_FALSE(s.intersect(r, soup.closest_hit(h), st));
-                CHECK_FALSE(s.occluded(ray, soup.any_hit(), st));
+                const TraversalStats st = test::check_no_hit(s, soup, ray);
                 CHECK(st.nodes == 0);
                 CHECK(st.prims == 0);
             }
@@ -178,14 +181,8 @@ TEST_CASE("SAH BVHs visit far fewer boxes than brute force", "[accel][agreement]
     const std::vector<Rayf> rays = test::random_rays(soup, 11, 400);
     auto count = [&](std::string_view name) {
         const AnyAccel accel = build_accel(name, soup.input());
-        TraversalStats st;
-        visit_accel(accel, [&](const auto& s) {
-            for (Rayf r : rays) {
-                Hit h;
-                s.intersect(r, soup.closest_hit(h), st);
-            }
-        });
-        return st;
+        return visit_accel(accel,
+                           [&](const auto& s) { return test::closest_hit_stats(s, soup, rays); });
     };
     const TraversalStats brute = count("brute");
     for (const std::string_view name : {"bvh:binned", "bvh:sweep"}) {
@@ -213,13 +210,7 @@ TEST_CASE("every structure agrees with brute force on 100,000 primitives",
           "[accel][agreement][.slow]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 100000);
     const std::vector<Rayf> rays = test::random_rays(soup, 5, 48);
-    const std::vector<Answer> expected = oracle_answers(soup, rays);
-    for (const AccelEntry& entry : accel_registry()) {
-        CAPTURE(entry.name);
-        const AnyAccel accel = entry.build(soup.input());
-        REQUIRE(accel_validate(accel).empty());
-        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
-    }
+    check_every_structure(soup, rays);
 }
 
 }  // namespace rtlab

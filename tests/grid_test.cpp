@@ -5,6 +5,7 @@
 #include "accel/grid/grid.h"
 
 #include "accel/brute_force.h"
+#include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -40,35 +41,6 @@ std::vector<Rayf> cell_boundary_rays(const Grid& g, std::uint64_t seed, std::siz
         rays.push_back(r);
     }
     return rays;
-}
-
-/// Closest hit (normal and robust) and any hit agree with brute force on every ray.
-void check_agreement(const Grid& grid, const test::Soup& soup, const std::vector<Rayf>& rays) {
-    const BruteForce oracle = BruteForce::build(soup.input());
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Rayf& ray = rays[i];
-        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
-                ray.tmax);
-        Hit want, normal, robust;
-        Rayf ro = ray, rn = ray, rr = ray;
-        const bool want_hit = oracle.intersect(ro, soup.closest_hit(want));
-        REQUIRE(grid.intersect(rn, soup.closest_hit(normal)) == want_hit);
-        REQUIRE(grid.intersect<true>(rr, soup.closest_hit(robust)) == want_hit);
-        if (want_hit) {
-            CHECK(normal.t == Approx(want.t).epsilon(1e-6));
-            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
-            for (const Hit& h : {normal, robust}) {
-                if (h.prim != want.prim) {
-                    const auto again = soup.hit(h.prim, ray);
-                    REQUIRE(again.has_value());
-                    CHECK(again->t == want.t);  // an exact tie
-                }
-            }
-        }
-        const bool want_occluded = oracle.occluded(ray, soup.any_hit());
-        CHECK(grid.occluded(ray, soup.any_hit()) == want_occluded);
-        CHECK(grid.occluded<true>(ray, soup.any_hit()) == want_occluded);
-    }
 }
 
 }  // namespace
@@ -116,35 +88,20 @@ TEST_CASE("grid agrees with brute force", "[accel][grid]") {
     std::vector<Rayf> rays = test::random_rays(soup, seed, 200);
     const std::vector<Rayf> on_boundaries = cell_boundary_rays(grid, seed, 60);
     rays.insert(rays.end(), on_boundaries.begin(), on_boundaries.end());
-    check_agreement(grid, soup, rays);
+    test::check_agrees_with_brute_force(grid, soup, rays);
 }
 
 TEST_CASE("grid handles primitives and rays on cell boundaries", "[accel][grid]") {
     // Boxes whose faces lie exactly on the cell planes of a 4 x 4 x 4 grid over [0, 4]^3, flat
     // boxes in those planes, duplicates and corner points.
-    test::Soup soup;
-    for (int x = 0; x < 4; ++x) {
-        for (int y = 0; y < 4; ++y) {
-            for (int z = 0; z < 4; ++z) {
-                const Vec3f c{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
-                if ((x + y + z) % 2 == 0) {
-                    soup.boxes.push_back({c, c + Vec3f{1, 1, 1}});
-                } else if (z == 1) {
-                    soup.boxes.push_back({c, c + Vec3f{1, 0, 1}});
-                    soup.boxes.push_back(soup.boxes.back());
-                } else {
-                    soup.boxes.push_back(Bounds3f(c));
-                }
-            }
-        }
-    }
+    const test::Soup soup = test::lattice_soup({1, 0, 1});
     GridConfig cfg;
     cfg.max_res = 4;
     const Grid grid = Grid::build(soup.input(), cfg);
     REQUIRE(grid.res == std::array<std::uint32_t, 3>{4, 4, 4});
     REQUIRE(grid.validate().empty());
-    check_agreement(grid, soup, cell_boundary_rays(grid, 3, 400));
-    check_agreement(grid, soup, test::random_rays(soup, 3, 200));
+    test::check_agrees_with_brute_force(grid, soup, cell_boundary_rays(grid, 3, 400));
+    test::check_agrees_with_brute_force(grid, soup, test::random_rays(soup, 3, 200));
 }
 
 TEST_CASE("grid finds a near hit beyond the first cell of a long primitive", "[accel][grid]") {
@@ -219,29 +176,14 @@ TEST_CASE("grid of no usable primitive is empty and never hit", "[accel][grid]")
 TEST_CASE("grid rejects invalid rays before touching a cell", "[accel][grid]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
     const Grid grid = Grid::build(soup.input());
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (const Rayf& ray : {Rayf{{nan, 0, 0}, {1, 0, 0}}, Rayf{{0, 0, 0}, {0, 0, 0}},
-                            Rayf{{0, 0, 0}, {1, 0, 0}, 2, 1}}) {
-        TraversalStats st;
-        Hit h;
-        Rayf r = ray;
-        CHECK_FALSE(grid.intersect(r, soup.closest_hit(h), st));
-        CHECK_FALSE(grid.occluded(ray, soup.any_hit(), st));
-        CHECK(st.nodes == 0);
-        CHECK(st.rays == 0);
-    }
+    test::check_rejects_invalid_rays(grid, soup);
 }
 
 TEST_CASE("grid tests far fewer primitives than brute force", "[accel][grid]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 500);
     const std::vector<Rayf> rays = test::random_rays(soup, 11, 400);
     const auto count = [&](const auto& accel) {
-        TraversalStats st;
-        for (Rayf r : rays) {
-            Hit h;
-            accel.intersect(r, soup.closest_hit(h), st);
-        }
-        return st;
+        return test::closest_hit_stats(accel, soup, rays);
     };
     const TraversalStats brute = count(BruteForce::build(soup.input()));
     const TraversalStats grid = count(Grid::build(soup.input()));
@@ -254,11 +196,7 @@ TEST_CASE("grid figures on a 10,000-primitive soup", "[.report][grid]") {
         const test::Soup soup = test::random_soup(kind, 42, 10000);
         const std::vector<Rayf> rays = test::random_rays(soup, 42, 20000);
         const Grid grid = Grid::build(soup.input());
-        TraversalStats st;
-        for (Rayf r : rays) {
-            Hit h;
-            grid.intersect(r, soup.closest_hit(h), st);
-        }
+        const TraversalStats st = test::closest_hit_stats(grid, soup, rays);
         const AccelInfo info = grid.info();
         std::printf(
             "grid:uniform %s: nodes/ray %.2f prims/ray %.2f res %ux%ux%u refs/prim %.2f "

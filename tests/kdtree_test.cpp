@@ -5,6 +5,7 @@
 #include "accel/kdtree/kdtree.h"
 
 #include "accel/brute_force.h"
+#include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -106,37 +107,6 @@ std::vector<Rayf> split_plane_rays(const KdTree& tree, std::uint64_t seed, std::
     return rays;
 }
 
-/// Closest hit (normal and robust traversal) and any hit agree with brute force on every ray.
-void check_agreement(const KdTree& tree, const test::Soup& soup, const std::vector<Rayf>& rays) {
-    const BruteForce oracle = BruteForce::build(soup.input());
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Rayf& ray = rays[i];
-        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
-                ray.tmax);
-        Hit want, normal, robust;
-        Rayf ro = ray, rn = ray, rr = ray;
-        const bool want_hit = oracle.intersect(ro, soup.closest_hit(want));
-        const bool normal_hit = tree.intersect(rn, soup.closest_hit(normal));
-        const bool robust_hit = tree.intersect<true>(rr, soup.closest_hit(robust));
-        REQUIRE(normal_hit == want_hit);
-        REQUIRE(robust_hit == want_hit);
-        if (want_hit) {
-            CHECK(normal.t == Approx(want.t).epsilon(1e-6));
-            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
-            for (const Hit& h : {normal, robust}) {
-                if (h.prim != want.prim) {
-                    const auto again = soup.hit(h.prim, ray);
-                    REQUIRE(again.has_value());
-                    CHECK(again->t == want.t);  // an exact tie
-                }
-            }
-        }
-        const bool want_occluded = oracle.occluded(ray, soup.any_hit());
-        CHECK(tree.occluded(ray, soup.any_hit()) == want_occluded);
-        CHECK(tree.occluded<true>(ray, soup.any_hit()) == want_occluded);
-    }
-}
-
 }  // namespace
 
 TEST_CASE("kd-tree nodes are 8 bytes and round-trip their fields", "[accel][kdtree]") {
@@ -174,28 +144,13 @@ TEST_CASE("kd-tree agrees with brute force", "[accel][kdtree]") {
     std::vector<Rayf> rays = test::random_rays(soup, seed, 200);
     const std::vector<Rayf> on_planes = split_plane_rays(tree, seed, 60);
     rays.insert(rays.end(), on_planes.begin(), on_planes.end());
-    check_agreement(tree, soup, rays);
+    test::check_agrees_with_brute_force(tree, soup, rays);
 }
 
 TEST_CASE("kd-tree handles primitives and rays on shared planes", "[accel][kdtree]") {
     // Unit boxes of a 4x4x4 lattice (every other cell), flat boxes in lattice planes, duplicates
     // and point boxes on lattice corners: every split candidate is a shared face.
-    test::Soup soup;
-    for (int x = 0; x < 4; ++x) {
-        for (int y = 0; y < 4; ++y) {
-            for (int z = 0; z < 4; ++z) {
-                const Vec3f c{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
-                if ((x + y + z) % 2 == 0) {
-                    soup.boxes.push_back({c, c + Vec3f{1, 1, 1}});
-                } else if (z == 1) {
-                    soup.boxes.push_back({c, c + Vec3f{1, 1, 0}});  // flat, in the plane z = 1
-                    soup.boxes.push_back(soup.boxes.back());
-                } else {
-                    soup.boxes.push_back(Bounds3f(c));
-                }
-            }
-        }
-    }
+    const test::Soup soup = test::lattice_soup({1, 1, 0});  // flat boxes in the plane z = 1
     test::Rng rng(5);
     std::vector<Rayf> rays;
     for (int i = 0; i < 300; ++i) {
@@ -224,8 +179,8 @@ TEST_CASE("kd-tree handles primitives and rays on shared planes", "[accel][kdtre
         cfg.builder = builder;
         const KdTree tree = KdTree::build(soup.input(), cfg);
         REQUIRE(tree.validate().empty());
-        check_agreement(tree, soup, rays);
-        check_agreement(tree, soup, split_plane_rays(tree, 9, 200));
+        test::check_agrees_with_brute_force(tree, soup, rays);
+        test::check_agrees_with_brute_force(tree, soup, split_plane_rays(tree, 9, 200));
     }
 }
 
@@ -305,29 +260,14 @@ TEST_CASE("kd-tree of no usable primitive is empty and never hit", "[accel][kdtr
 TEST_CASE("kd-tree rejects invalid rays before touching a node", "[accel][kdtree]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
     const KdTree tree = KdTree::build(soup.input());
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (const Rayf& ray : {Rayf{{nan, 0, 0}, {1, 0, 0}}, Rayf{{0, 0, 0}, {0, 0, 0}},
-                            Rayf{{0, 0, 0}, {1, 0, 0}, 2, 1}}) {
-        TraversalStats st;
-        Hit h;
-        Rayf r = ray;
-        CHECK_FALSE(tree.intersect(r, soup.closest_hit(h), st));
-        CHECK_FALSE(tree.occluded(ray, soup.any_hit(), st));
-        CHECK(st.nodes == 0);
-        CHECK(st.rays == 0);
-    }
+    test::check_rejects_invalid_rays(tree, soup);
 }
 
 TEST_CASE("SAH kd-tree beats the median kd-tree and brute force on counts", "[accel][kdtree]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 500);
     const std::vector<Rayf> rays = test::random_rays(soup, 11, 400);
     const auto count = [&](const auto& accel) {
-        TraversalStats st;
-        for (Rayf r : rays) {
-            Hit h;
-            accel.intersect(r, soup.closest_hit(h), st);
-        }
-        return st;
+        return test::closest_hit_stats(accel, soup, rays);
     };
     KdTree::Config median_cfg;
     median_cfg.builder = KdBuilder::median;
@@ -352,11 +292,7 @@ TEST_CASE("kd-tree figures on a 10,000-primitive soup", "[.report][kdtree]") {
             KdTree::Config cfg;
             cfg.builder = builder;
             const KdTree tree = KdTree::build(soup.input(), cfg);
-            TraversalStats st;
-            for (Rayf r : rays) {
-                Hit h;
-                tree.intersect(r, soup.closest_hit(h), st);
-            }
+            const TraversalStats st = test::closest_hit_stats(tree, soup, rays);
             const AccelInfo info = tree.info();
             std::printf(
                 "kdtree:%s %s: nodes/ray %.2f prims/ray %.2f nodes %llu depth %u "

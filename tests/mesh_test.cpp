@@ -3,7 +3,6 @@
 #include "mesh/mesh_clean.h"
 #include "mesh/mesh_io.h"
 #include "mesh/mesh_stats.h"
-
 #include "support/temp_dir.h"
 
 #include <catch2/catch.hpp>

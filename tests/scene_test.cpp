@@ -2,7 +2,6 @@
 // primitive id contract, and feature detection.
 #include "mesh/mesh_io.h"
 #include "scene/scene_io.h"
-
 #include "support/temp_dir.h"
 
 #include <catch2/catch.hpp>

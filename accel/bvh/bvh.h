@@ -55,6 +55,37 @@ struct Bvh {
     /// [ray.tmin, ray.tmax] meets, near child first. Invalid rays return false before any node.
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return traverse<false, IsRobust>(ray, hit_fn, stats);
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking. Invalid rays return
+    /// false before any node.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return traverse<true, IsRobust>(ray, hit_fn, stats);
+    }
+
+    /// The root box (empty when no box was usable).
+    Bounds3f bounds() const { return nodes.empty() ? Bounds3f{} : nodes[0].bounds(); }
+
+    /// Sizes, depth and the SAH cost sum(inner A * Ct) + sum(leaf A * n * Ci), divided by the
+    /// root area A(root) (Ci * N when the root has zero area), with the Config's Ct and Ci.
+    AccelInfo info() const;
+
+    /// Empty when every invariant holds (each usable primitive referenced exactly once, ids
+    /// unique and < prim_count, children inside their parent, non-empty leaves of at most
+    /// max_leaf_size primitives, depth <= 64, every node reachable once); else the first
+    /// violation.
+    std::string validate() const;
+
+    friend bool operator==(const Bvh&, const Bvh&) = default;
+
+private:
+    /// The one traversal loop behind intersect (IsAnyHit false: R is Rayf, hit_fn shrinks
+    /// ray.tmax, all hits are collected) and occluded (IsAnyHit true: R is const Rayf, the
+    /// first hit ends it). Nodes are clipped against the current window, near child first.
+    template <bool IsAnyHit, bool IsRobust, class R, class F, class S>
+    bool traverse(R& ray, F& hit_fn, S& stats) const {
         if (!is_valid(ray)) {
             return false;
         }
@@ -84,7 +115,13 @@ struct Bvh {
                 const std::uint32_t end = node.first + node.prim_count();
                 for (std::uint32_t i = node.first; i < end; ++i) {
                     stats.count_prim();
-                    hit = hit_fn(prim_ids[i], ray) || hit;
+                    if constexpr (IsAnyHit) {
+                        if (hit_fn(prim_ids[i], ray)) {
+                            return true;
+                        }
+                    } else {
+                        hit = hit_fn(prim_ids[i], ray) || hit;
+                    }
                 }
             }
             if (size == 0) {
@@ -93,63 +130,6 @@ struct Bvh {
             current = stack[--size];
         }
     }
-
-    /// Any hit: stops at the first primitive hit_fn reports as blocking. Invalid rays return
-    /// false before any node.
-    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
-    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        if (!is_valid(ray)) {
-            return false;
-        }
-        stats.count_ray();
-        if (nodes.empty()) {
-            return false;
-        }
-        const SlabRay<float> sr(ray);
-        std::uint32_t stack[64];
-        std::uint32_t size = 0;
-        std::uint32_t current = 0;
-        for (;;) {
-            const BvhNode& node = nodes[current];
-            stats.count_node();
-            float t0 = ray.tmin, t1 = ray.tmax;
-            if (clip_slabs<IsRobust>(node.lo, node.hi, sr, t0, t1)) {
-                if (!node.is_leaf()) {
-                    const bool right_first = sr.neg[node.axis()];
-                    assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
-                    stack[size++] = right_first ? node.first : node.first + 1;
-                    current = right_first ? node.first + 1 : node.first;
-                    continue;
-                }
-                const std::uint32_t end = node.first + node.prim_count();
-                for (std::uint32_t i = node.first; i < end; ++i) {
-                    stats.count_prim();
-                    if (hit_fn(prim_ids[i], ray)) {
-                        return true;
-                    }
-                }
-            }
-            if (size == 0) {
-                return false;
-            }
-            current = stack[--size];
-        }
-    }
-
-    /// The root box (empty when no box was usable).
-    Bounds3f bounds() const { return nodes.empty() ? Bounds3f{} : nodes[0].bounds(); }
-
-    /// Sizes, depth and the SAH cost sum(inner A * Ct) + sum(leaf A * n * Ci), divided by the
-    /// root area A(root) (Ci * N when the root has zero area), with the Config's Ct and Ci.
-    AccelInfo info() const;
-
-    /// Empty when every invariant holds (each usable primitive referenced exactly once, ids
-    /// unique and < prim_count, children inside their parent, non-empty leaves of at most
-    /// max_leaf_size primitives, depth <= 64, every node reachable once); else the first
-    /// violation.
-    std::string validate() const;
-
-    friend bool operator==(const Bvh&, const Bvh&) = default;
 };
 
 /// Object-median builder: splits at the median centroid on the largest centroid axis.

@@ -6,6 +6,7 @@
 // primitives; the walk ends at the first cell whose exit lies beyond the closest hit.
 
 #include "accel/accel.h"
+#include "accel/window_leaf.h"
 #include "intersect/box/slabs.h"
 
 #include <array>
@@ -47,22 +48,16 @@ struct Grid {
     /// hit_fn) lies within the current cell. Invalid rays are rejected before any cell.
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        bool hit = false;
-        walk<IsRobust>(ray, stats, [&](std::uint32_t id) {
-            stats.count_prim();
-            hit = hit_fn(id, ray) || hit;
-            return false;
+        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return walk<IsRobust>(r, stats, visit);
         });
-        return hit;
     }
 
     /// Any hit: stops at the first primitive hit_fn reports as blocking.
     template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
     bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        Rayf r = ray;
-        return walk<IsRobust>(r, stats, [&](std::uint32_t id) {
-            stats.count_prim();
-            return static_cast<bool>(hit_fn(id, ray));
+        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return walk<IsRobust>(r, stats, visit);
         });
     }
 

@@ -7,6 +7,7 @@
 
 #include "accel/accel.h"
 #include "accel/kdtree/node.h"
+#include "accel/window_leaf.h"
 #include "intersect/box/slabs.h"
 
 #include <cmath>
@@ -56,22 +57,16 @@ struct KdTree {
     /// Invalid rays (NaN, zero direction) are rejected before any node is touched.
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        bool hit = false;
-        traverse<IsRobust>(ray, stats, [&](std::uint32_t id) {
-            stats.count_prim();
-            hit = hit_fn(id, ray) || hit;
-            return false;
+        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return traverse<IsRobust>(r, stats, visit);
         });
-        return hit;
     }
 
     /// Any hit: stops at the first primitive hit_fn reports as blocking.
     template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
     bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        Rayf r = ray;
-        return traverse<IsRobust>(r, stats, [&](std::uint32_t id) {
-            stats.count_prim();
-            return static_cast<bool>(hit_fn(id, ray));
+        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return traverse<IsRobust>(r, stats, visit);
         });
     }
 

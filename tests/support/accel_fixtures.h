@@ -159,6 +159,29 @@ inline Soup random_soup(SoupKind kind, std::uint64_t seed, std::uint32_t count) 
     return s;
 }
 
+/// Boxes on the 4 x 4 x 4 unit lattice over [0, 4]^3: a unit box at each cell corner c with
+/// x + y + z even; where it is odd, two duplicate flat boxes [c, c + flat] in the layer z = 1 and
+/// a point box at c elsewhere. Every face and point lies on a lattice plane.
+inline Soup lattice_soup(const Vec3f& flat) {
+    Soup soup;
+    for (int x = 0; x < 4; ++x) {
+        for (int y = 0; y < 4; ++y) {
+            for (int z = 0; z < 4; ++z) {
+                const Vec3f c{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
+                if ((x + y + z) % 2 == 0) {
+                    soup.boxes.push_back({c, c + Vec3f{1, 1, 1}});
+                } else if (z == 1) {
+                    soup.boxes.push_back({c, c + flat});
+                    soup.boxes.push_back(soup.boxes.back());
+                } else {
+                    soup.boxes.push_back(Bounds3f(c));
+                }
+            }
+        }
+    }
+    return soup;
+}
+
 /// `count` rays for the soup s, cycling through: from outside towards the scene, from inside the
 /// scene box, axis-aligned (two zero direction components), one zero component, from a point on
 /// a primitive box face (a node boundary) along that face or off it, and tight or degenerate
@@ -239,6 +262,18 @@ inline std::vector<Rayf> random_rays(const Soup& s, std::uint64_t seed, std::uin
         rays.push_back(r);
     }
     return rays;
+}
+
+/// Counters of one closest-hit query per ray of rays on accel (any structure with the Accel
+/// query API), each ray starting from its own full window.
+template <class A>
+TraversalStats closest_hit_stats(const A& accel, const Soup& soup, const std::vector<Rayf>& rays) {
+    TraversalStats st;
+    for (Rayf r : rays) {
+        Hit h;
+        accel.intersect(r, soup.closest_hit(h), st);
+    }
+    return st;
 }
 
 }  // namespace rtlab::test

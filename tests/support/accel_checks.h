@@ -1,0 +1,77 @@
+#pragma once
+// Catch2 checks shared by the acceleration-structure tests: agreement of one structure with the
+// brute-force oracle on a ray set, and the rejection of a ray by both queries.
+
+#include "accel/brute_force.h"
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace rtlab::test {
+
+/// Checks that closest hit (normal and robust) and any hit (normal and robust) of accel agree
+/// with brute force on every ray: same hit or miss, same t (a different primitive only at an
+/// exact tie, checked by re-testing it), same occlusion.
+template <class A>
+void check_agrees_with_brute_force(const A& accel,
+                                   const Soup& soup,
+                                   const std::vector<Rayf>& rays) {
+    const BruteForce oracle = BruteForce::build(soup.input());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const Rayf& ray = rays[i];
+        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
+                ray.tmax);
+        Hit want, normal, robust;
+        Rayf ro = ray, rn = ray, rr = ray;
+        const bool want_hit = oracle.intersect(ro, soup.closest_hit(want));
+        const bool normal_hit = accel.intersect(rn, soup.closest_hit(normal));
+        const bool robust_hit = accel.template intersect<true>(rr, soup.closest_hit(robust));
+        REQUIRE(normal_hit == want_hit);
+        REQUIRE(robust_hit == want_hit);
+        if (want_hit) {
+            CHECK(normal.t == Approx(want.t).epsilon(1e-6));
+            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
+            for (const Hit& h : {normal, robust}) {
+                if (h.prim != want.prim) {
+                    const auto again = soup.hit(h.prim, ray);
+                    REQUIRE(again.has_value());
+                    CHECK(again->t == want.t);  // an exact tie
+                }
+            }
+        }
+        const bool want_occluded = oracle.occluded(ray, soup.any_hit());
+        CHECK(accel.occluded(ray, soup.any_hit()) == want_occluded);
+        CHECK(accel.template occluded<true>(ray, soup.any_hit()) == want_occluded);
+    }
+}
+
+/// Checks that neither the closest-hit nor the any-hit query of ray reports a hit on accel, and
+/// returns the counters of both queries (for the caller's checks on nodes, rays or prims).
+template <class A>
+TraversalStats check_no_hit(const A& accel, const Soup& soup, const Rayf& ray) {
+    TraversalStats st;
+    Hit h;
+    Rayf r = ray;
+    CHECK_FALSE(accel.intersect(r, soup.closest_hit(h), st));
+    CHECK_FALSE(accel.occluded(ray, soup.any_hit(), st));
+    return st;
+}
+
+/// Checks that accel rejects a ray with a NaN origin, one with a zero direction and one with an
+/// empty window (tmin > tmax): no hit, no node visited and no ray counted.
+template <class A>
+void check_rejects_invalid_rays(const A& accel, const Soup& soup) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (const Rayf& ray : {Rayf{{nan, 0, 0}, {1, 0, 0}}, Rayf{{0, 0, 0}, {0, 0, 0}},
+                            Rayf{{0, 0, 0}, {1, 0, 0}, 2, 1}}) {
+        const TraversalStats st = check_no_hit(accel, soup, ray);
+        CHECK(st.nodes == 0);
+        CHECK(st.rays == 0);
+    }
+}
+
+}  // namespace rtlab::test
