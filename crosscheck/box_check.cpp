@@ -5,8 +5,8 @@
 // segment of the window [tmin, tmax]; reference t = the entry parameter max(tmin, t_enter).
 // OBB oracle: the six exact half-spaces |dot(p - c, a_i)| <= h_i with the float axes taken
 // exactly (the very parallelepiped the method describes), the ray clipped with GMP rationals.
-#include "crosscheck/accumulator.h"
 #include "crosscheck/checks.h"
+#include "crosscheck/driver.h"
 #include "intersect/box/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -14,14 +14,10 @@
 #include <CGAL/intersections.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <random>
 #include <string>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab::xcheck {
@@ -36,57 +32,6 @@ constexpr std::array<const char*, 6> set_names{"random", "edges", "grazing",
                                                "axis1",  "axis2", "inside"};
 enum RaySet : std::uint8_t { random_set, edges_set, grazing_set, axis1_set, axis2_set, inside_set };
 
-/// One traced ray: which shape it is tested against and which set it belongs to.
-struct Sample {
-    Rayf ray;
-    std::uint32_t shape = 0;
-    std::uint8_t set = 0;
-};
-
-/// The oracle's answer for one sample.
-struct Truth {
-    bool hit = false;
-    double t = 0;
-};
-
-/// Seeded float generator (mt19937_64 bits, our own mapping, so results do not depend on the
-/// standard library's distributions).
-class Rng {
-public:
-    explicit Rng(std::uint64_t seed) : g_(seed) {}
-    /// Uniform in [a, b].
-    float uni(float a, float b) {
-        const float u = static_cast<float>(g_() >> 40) * 0x1p-24f;
-        return a + (b - a) * u;
-    }
-    /// Uniform integer in [0, n).
-    std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(g_() % n); }
-    /// True with probability p.
-    bool coin(float p) { return uni(0.0f, 1.0f) < p; }
-    /// Random direction, length in [0.1, 1], not normalised.
-    Vec3f dir() {
-        for (;;) {
-            const Vec3f d{uni(-1, 1), uni(-1, 1), uni(-1, 1)};
-            const float l2 = length_squared(d);
-            if (l2 <= 1.0f && l2 >= 0.01f) {
-                return d;
-            }
-        }
-    }
-
-private:
-    std::mt19937_64 g_;
-};
-
-/// Rays per set: an equal split of n, the remainder going to the first sets.
-std::array<std::size_t, set_names.size()> split_rays(std::size_t n) {
-    std::array<std::size_t, set_names.size()> c{};
-    for (std::size_t s = 0; s < c.size(); ++s) {
-        c[s] = n / c.size() + (s < n % c.size() ? 1 : 0);
-    }
-    return c;
-}
-
 /// A point of the box [lo, hi] grown by `grow` of its size on each side.
 Vec3f point_in(Rng& rng, const Vec3f& lo, const Vec3f& hi, float grow) {
     Vec3f p;
@@ -95,19 +40,6 @@ Vec3f point_in(Rng& rng, const Vec3f& lo, const Vec3f& hi, float grow) {
         p[k] = rng.uni(lo[k] - g, hi[k] + g);
     }
     return p;
-}
-
-/// A small signed offset: exactly 0 a third of the time, else +-[0, 1e-6].
-float tiny(Rng& rng) {
-    return rng.coin(0.33f) ? 0.0f : rng.uni(-1e-6f, 1e-6f);
-}
-
-/// A zero that is -0.0 half the time, or (rarely) a denormal of either sign.
-float zero_like(Rng& rng) {
-    if (rng.coin(0.1f)) {
-        return rng.coin(0.5f) ? 1e-40f : -1e-40f;
-    }
-    return rng.coin(0.5f) ? 0.0f : -0.0f;
 }
 
 /// A ray of set `set` for the axis-aligned box [lo, hi] (box-local coordinates for OBBs).
@@ -181,27 +113,6 @@ Rayf local_ray(Rng& rng, RaySet set, const Vec3f& lo, const Vec3f& hi) {
     r.org = target - dir * dist;
     r.dir = dir;
     return r;
-}
-
-/// Shapes and samples of one check.
-template <class Shape>
-struct Workload {
-    std::vector<Shape> shapes;
-    std::vector<Sample> samples;
-    std::vector<Truth> truth;
-};
-
-/// Fills truth[i] = oracle(shapes[s.shape], s.ray) for every sample, in parallel.
-template <class Shape, class Oracle>
-void compute_truth(Workload<Shape>& w, Oracle oracle) {
-    w.truth.assign(w.samples.size(), Truth{});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, w.samples.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                              const Sample& s = w.samples[i];
-                              w.truth[i] = oracle(w.shapes[s.shape], s.ray);
-                          }
-                      });
 }
 
 /// The traced ray as two exact points: P1 = org and P2 = org + dir. P2 is summed exactly: the
@@ -326,97 +237,6 @@ Obb<T> to_scalar(const Obb<float>& b) {
             Vec3<T>(b.half)};
 }
 
-/// Runs method M on every sample: timed single-threaded, then compared with the truth.
-template <class M, class Shape>
-void run_method(const char* prim,
-                const Workload<Shape>& w,
-                const Options& opt,
-                std::vector<Row>& rows) {
-    using T = typename M::Scalar;
-    std::vector<typename M::Prepared> prepared;
-    prepared.reserve(w.shapes.size());
-    for (const Shape& s : w.shapes) {
-        prepared.push_back(M::prepare(to_scalar<T>(s)));
-    }
-    std::vector<Ray<T>> rays;
-    rays.reserve(w.samples.size());
-    for (const Sample& s : w.samples) {
-        rays.push_back(static_cast<Ray<T>>(s.ray));
-    }
-    std::vector<std::optional<PrimHit<T>>> res(rays.size());
-    // Repeat until 20 ms have passed so short runs still give a stable ns/test.
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    std::size_t passes = 0;
-    do {
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            res[i] = M::intersect(prepared[w.samples[i].shape], rays[i]);
-        }
-        ++passes;
-    } while (Clock::now() - start < std::chrono::milliseconds(20) && passes < 1000);
-    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
-                      static_cast<double>(std::max<std::size_t>(1, passes * rays.size()));
-
-    std::array<Accumulator, set_names.size()> per_set;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Truth& tr = w.truth[i];
-        per_set[w.samples[i].set].add(res[i].has_value(), tr.hit,
-                                      res[i] ? static_cast<double>(res[i]->t) : 0.0, tr.t);
-    }
-    Accumulator all;
-    for (const Accumulator& a : per_set) {
-        all.merge(a);
-    }
-    const std::string precision = std::is_same_v<T, float> ? "float" : "double";
-    rows.push_back(all.row(prim, std::string(M::name), precision, "all", ns));
-    if (opt.by_set) {
-        for (std::size_t s = 0; s < set_names.size(); ++s) {
-            rows.push_back(per_set[s].row(prim, std::string(M::name), precision, set_names[s], ns));
-        }
-    }
-}
-
-/// Runs the selected methods of a kind over a workload, float then double per method.
-template <template <class, class> class ForEach, class Shape>
-std::vector<Row> run_selected(const char* prim,
-                              const std::vector<std::string>& known,
-                              const Workload<Shape>& w,
-                              const Options& opt) {
-    std::vector<Row> rows;
-    for (const std::string& name : select_methods(known, opt.methods, prim)) {
-        const auto one = [&]<class M>() {
-            if (M::name == name) {
-                run_method<M>(prim, w, opt, rows);
-            }
-        };
-        if (opt.f32) {
-            ForEach<float, decltype(one)>::run(one);
-        }
-        if (opt.f64) {
-            ForEach<double, decltype(one)>::run(one);
-        }
-    }
-    return rows;
-}
-
-template <class T, class F>
-struct ForEachAabb {
-    static void run(const F& f) { for_each_aabb_method<T>(f); }
-};
-template <class T, class F>
-struct ForEachObb {
-    static void run(const F& f) { for_each_obb_method<T>(f); }
-};
-
-/// Method names of a kind from its compile-time list.
-template <template <class, class> class ForEach>
-std::vector<std::string> names_of() {
-    std::vector<std::string> names;
-    const auto add = [&]<class M>() { names.emplace_back(M::name); };
-    ForEach<float, decltype(add)>::run(add);
-    return names;
-}
-
 /// Random AABBs in [-1, 2]^3 with sides in [0.05, 1]; one in eight is flat on one axis.
 std::vector<Bounds3f> make_aabbs(Rng& rng, std::size_t n) {
     std::vector<Bounds3f> boxes;
@@ -478,12 +298,30 @@ std::vector<Obb<float>> make_obbs(Rng& rng, std::size_t n) {
     return boxes;
 }
 
+/// Visits the AABB or OBB methods of precision T (see run_wanted).
+constexpr auto for_each_aabb = [](auto tag, const auto& f) {
+    for_each_aabb_method<typename decltype(tag)::type>(f);
+};
+constexpr auto for_each_obb = [](auto tag, const auto& f) {
+    for_each_obb_method<typename decltype(tag)::type>(f);
+};
+
+/// The float shape in precision T, for the driver.
+constexpr auto convert = []<class T>(const auto& shape, std::type_identity<T>) {
+    return to_scalar<T>(shape);
+};
+
 constexpr std::size_t shape_count = 64;
+
+/// Sample shapes for make_samples: uniform over the shape_count shapes.
+auto random_shape(Rng& rng) {
+    return [&rng](std::size_t, std::size_t) { return rng.below(shape_count); };
+}
 
 }  // namespace
 
 std::vector<std::string> aabb_methods() {
-    return names_of<ForEachAabb>();
+    return method_names(for_each_aabb);
 }
 
 std::vector<Row> check_aabbs(const Options& opt) {
@@ -491,23 +329,17 @@ std::vector<Row> check_aabbs(const Options& opt) {
     Rng rng(opt.seed);
     Workload<Bounds3f> w;
     w.shapes = make_aabbs(rng, shape_count);
-    const auto counts = split_rays(opt.rays);
-    for (std::size_t s = 0; s < counts.size(); ++s) {
-        for (std::size_t j = 0; j < counts[s]; ++j) {
-            Sample smp;
-            smp.shape = rng.below(shape_count);
-            smp.set = static_cast<std::uint8_t>(s);
-            const Bounds3f& b = w.shapes[smp.shape];
-            smp.ray = local_ray(rng, static_cast<RaySet>(s), b.lo, b.hi);
-            w.samples.push_back(smp);
-        }
-    }
+    w.samples = make_samples(split_rays<set_names.size()>(opt.rays), random_shape(rng),
+                             [&](std::size_t s, std::uint32_t shape) {
+                                 const Bounds3f& b = w.shapes[shape];
+                                 return local_ray(rng, static_cast<RaySet>(s), b.lo, b.hi);
+                             });
     compute_truth(w, aabb_truth);
-    return run_selected<ForEachAabb>("aabb", aabb_methods(), w, opt);
+    return run_workload("aabb", set_names, for_each_aabb, w, convert, opt);
 }
 
 std::vector<std::string> obb_methods() {
-    return names_of<ForEachObb>();
+    return method_names(for_each_obb);
 }
 
 std::vector<Row> check_obbs(const Options& opt) {
@@ -515,13 +347,11 @@ std::vector<Row> check_obbs(const Options& opt) {
     Rng rng(opt.seed);
     Workload<Obb<float>> w;
     w.shapes = make_obbs(rng, shape_count);
-    const auto counts = split_rays(opt.rays);
-    for (std::size_t s = 0; s < counts.size(); ++s) {
-        for (std::size_t j = 0; j < counts[s]; ++j) {
-            Sample smp;
-            smp.shape = rng.below(shape_count);
-            smp.set = static_cast<std::uint8_t>(s);
-            const Obb<float>& b = w.shapes[smp.shape];
+    w.samples = make_samples(
+        split_rays<set_names.size()>(opt.rays), random_shape(rng),
+        [&](std::size_t s, std::uint32_t shape) {
+            const Obb<float>& b = w.shapes[shape];
+            Rayf ray;
             const auto world = [&](const Vec3f& p) {
                 return b.axis[0] * p.x + b.axis[1] * p.y + b.axis[2] * p.z;
             };
@@ -543,19 +373,18 @@ std::vector<Row> check_obbs(const Options& opt) {
                 if (length_squared(dir) < 1e-4f) {
                     dir[(a + 1) % 3] = 1.0f;
                 }
-                smp.ray.org = target - dir * rng.uni(0.5f, 4.0f);
-                smp.ray.dir = dir;
+                ray.org = target - dir * rng.uni(0.5f, 4.0f);
+                ray.dir = dir;
             } else {
                 const Rayf local = local_ray(rng, set, -b.half, b.half);
-                smp.ray = local;
-                smp.ray.org = b.center + world(local.org);
-                smp.ray.dir = world(local.dir);
+                ray = local;
+                ray.org = b.center + world(local.org);
+                ray.dir = world(local.dir);
             }
-            w.samples.push_back(smp);
-        }
-    }
+            return ray;
+        });
     compute_truth(w, obb_truth);
-    return run_selected<ForEachObb>("obb", obb_methods(), w, opt);
+    return run_workload("obb", set_names, for_each_obb, w, convert, opt);
 }
 
 }  // namespace rtlab::xcheck

@@ -2,11 +2,10 @@
 // rational coefficients (GMP; the float inputs are exact rationals, the tangle constant is 59/5),
 // the exact number of distinct roots in [tmin, tmax] by a Sturm sequence over Q, the smallest
 // root isolated by Sturm bisection and refined by 256-bit MPFR bisection to < 2^-110 relative.
-#include "crosscheck/accumulator.h"
 #include "crosscheck/checks.h"
+#include "crosscheck/driver.h"
 #include "intersect/implicit/methods.h"
 
-#include <chrono>
 #include <cmath>
 #include <gmpxx.h>
 #include <mpfr.h>
@@ -371,62 +370,18 @@ std::vector<ImplicitSet<S>> make_sets(std::size_t n, std::uint64_t seed) {
 
 /// The surface in scalar T.
 template <class T>
-Torus<T> convert(const Torus<float>& s) {
+Torus<T> convert_surface(const Torus<float>& s) {
     return {Vec3<T>(s.center), static_cast<T>(s.major), static_cast<T>(s.minor)};
 }
 template <class T>
-TangleCube<T> convert(const TangleCube<float>& s) {
+TangleCube<T> convert_surface(const TangleCube<float>& s) {
     return {Vec3<T>(s.center), static_cast<T>(s.scale)};
 }
 
-template <template <class> class S, class M>
-void run_method(const std::vector<ImplicitSet<S>>& sets,
-                const std::string& precision,
-                bool by_set,
-                std::vector<Row>& rows) {
-    using T = typename M::Scalar;
-    const std::string name = std::string(S<float>::name) + "/" + std::string(M::name);
-    Accumulator all;
-    double all_ns = 0;
-    std::size_t all_rays = 0;
-    std::vector<Row> set_rows;
-    for (const ImplicitSet<S>& set : sets) {
-        std::vector<typename M::Prepared> prepared;
-        std::vector<Ray<T>> rays;
-        for (const ImplicitCase<S>& c : set.cases) {
-            prepared.push_back(M::prepare(convert<T>(c.surface)));
-            rays.push_back(static_cast<Ray<T>>(c.ray));
-        }
-        Accumulator acc;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            const auto hit = M::intersect(prepared[i], rays[i]);
-            acc.add(hit.has_value(), set.oracle[i].hit, hit ? static_cast<double>(hit->t) : 0.0,
-                    set.oracle[i].t);
-        }
-        const auto start = std::chrono::steady_clock::now();
-        double sink = 0;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            if (const auto hit = M::intersect(prepared[i], rays[i])) {
-                sink += static_cast<double>(hit->t);
-            }
-        }
-        const double ns =
-            std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
-                .count();
-        volatile double keep = sink;
-        static_cast<void>(keep);
-        all.merge(acc);
-        all_ns += ns;
-        all_rays += rays.size();
-        if (by_set) {
-            set_rows.push_back(acc.row("implicit", name, precision, set.name,
-                                       rays.empty() ? 0.0 : ns / static_cast<double>(rays.size())));
-        }
-    }
-    rows.push_back(all.row("implicit", name, precision, "all",
-                           all_rays ? all_ns / static_cast<double>(all_rays) : 0.0));
-    rows.insert(rows.end(), set_rows.begin(), set_rows.end());
-}
+/// Visits the methods of surface kind S in precision T (see run_wanted).
+template <template <class> class S>
+constexpr auto for_each_method =
+    [](auto tag, const auto& f) { for_each_implicit_method<S, typename decltype(tag)::type>(f); };
 
 /// Runs the wanted methods of surface kind S (names "<surface>/<method>").
 template <template <class> class S>
@@ -442,32 +397,24 @@ void run_surface(const Options& opt,
         return;
     }
     const std::vector<ImplicitSet<S>> sets = make_sets<S>(opt.rays, opt.seed);
-    for (const std::string& w : wanted) {
-        if (opt.f32) {
-            for_each_implicit_method<S, float>([&]<class M>() {
-                if (prefix + std::string(M::name) == w) {
-                    run_method<S, M>(sets, "float", opt.by_set, rows);
-                }
-            });
-        }
-        if (opt.f64) {
-            for_each_implicit_method<S, double>([&]<class M>() {
-                if (prefix + std::string(M::name) == w) {
-                    run_method<S, M>(sets, "double", opt.by_set, rows);
-                }
-            });
-        }
-    }
+    const auto convert = []<class T>(const ImplicitCase<S>& c, std::type_identity<T>) {
+        return convert_surface<T>(c.surface);
+    };
+    run_wanted(
+        wanted, opt, for_each_method<S>,
+        [&]<class M>() {
+            run_case_sets<M>("implicit", prefix + std::string(M::name), sets, convert, opt.by_set,
+                             rows);
+        },
+        prefix);
 }
 
 }  // namespace
 
 std::vector<std::string> implicit_methods() {
-    std::vector<std::string> names;
-    for_each_implicit_method<Torus, float>(
-        [&]<class M>() { names.push_back("torus/" + std::string(M::name)); });
-    for_each_implicit_method<TangleCube, float>(
-        [&]<class M>() { names.push_back("tangle/" + std::string(M::name)); });
+    std::vector<std::string> names = method_names(for_each_method<Torus>, "torus/");
+    const std::vector<std::string> tangle = method_names(for_each_method<TangleCube>, "tangle/");
+    names.insert(names.end(), tangle.begin(), tangle.end());
     return names;
 }
 

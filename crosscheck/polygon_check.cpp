@@ -7,8 +7,8 @@
 // (even one lying in the plane); otherwise the exact hit point q on that plane, with t in
 // [tmin, tmax], is inside when CGAL Polygon_2::bounded_side of the exact 2D projection (dropping
 // the dominant axis of N, ties to the lowest index) says bounded or boundary.
-#include "crosscheck/accumulator.h"
 #include "crosscheck/checks.h"
+#include "crosscheck/driver.h"
 #include "intersect/polygon/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -16,11 +16,9 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <random>
 #include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -44,70 +42,6 @@ enum RaySet : std::uint8_t {
     axis2_set,
     on_plane_set
 };
-
-/// One traced ray: which shape it is tested against and which set it belongs to.
-struct Sample {
-    Rayf ray;
-    std::uint32_t shape = 0;
-    std::uint8_t set = 0;
-};
-
-/// The oracle's answer for one sample.
-struct Truth {
-    bool hit = false;
-    double t = 0;
-};
-
-/// Seeded float generator (mt19937_64 bits, our own mapping, so results do not depend on the
-/// standard library's distributions).
-class Rng {
-public:
-    explicit Rng(std::uint64_t seed) : g_(seed) {}
-    /// Uniform in [a, b].
-    float uni(float a, float b) {
-        const float u = static_cast<float>(g_() >> 40) * 0x1p-24f;
-        return a + (b - a) * u;
-    }
-    /// Uniform integer in [0, n).
-    std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(g_() % n); }
-    /// True with probability p.
-    bool coin(float p) { return uni(0.0f, 1.0f) < p; }
-    /// Random direction, length in [0.1, 1], not normalised.
-    Vec3f dir() {
-        for (;;) {
-            const Vec3f d{uni(-1, 1), uni(-1, 1), uni(-1, 1)};
-            const float l2 = length_squared(d);
-            if (l2 <= 1.0f && l2 >= 0.01f) {
-                return d;
-            }
-        }
-    }
-
-private:
-    std::mt19937_64 g_;
-};
-
-/// Rays per set: an equal split of n, the remainder going to the first sets.
-std::array<std::size_t, set_names.size()> split_rays(std::size_t n) {
-    std::array<std::size_t, set_names.size()> c{};
-    for (std::size_t s = 0; s < c.size(); ++s) {
-        c[s] = n / c.size() + (s < n % c.size() ? 1 : 0);
-    }
-    return c;
-}
-
-/// A small signed offset: exactly 0 a third of the time, else +-[0, 1e-6].
-float tiny(Rng& rng) {
-    return rng.coin(0.33f) ? 0.0f : rng.uni(-1e-6f, 1e-6f);
-}
-
-/// A zero that is -0.0 half the time, or (rarely) a denormal of either sign.
-float zero_like(Rng& rng) {
-    if (rng.coin(0.1f)) {
-        return rng.coin(0.5f) ? 1e-40f : -1e-40f;
-    }
-    return rng.coin(0.5f) ? 0.0f : -0.0f;
-}
 
 /// A float polygon with the frame it was built in (for aiming rays at its plane).
 struct TestPolygon {
@@ -245,14 +179,6 @@ Rayf polygon_ray(Rng& rng, RaySet set, const TestPolygon& tp) {
     return r;
 }
 
-/// Shapes and samples of one check.
-template <class Shape>
-struct Workload {
-    std::vector<Shape> shapes;
-    std::vector<Sample> samples;
-    std::vector<Truth> truth;
-};
-
 /// The traced ray as two exact points: P1 = org and P2 = org + dir. P2 is summed exactly: the
 /// double sum of the floats is exact only while no component of dir is below 2^-29 of org's, and
 /// the denormal directions of the axis sets would otherwise be judged as zero components.
@@ -324,99 +250,22 @@ Polygon<T> to_scalar(const Polygon<float>& p) {
     return out;
 }
 
-/// Runs method M on every sample: timed single-threaded, then compared with the truth.
-template <class M, class Shape>
-void run_method(const char* prim,
-                const Workload<Shape>& w,
-                const Options& opt,
-                std::vector<Row>& rows) {
-    using T = typename M::Scalar;
-    std::vector<typename M::Prepared> prepared;
-    prepared.reserve(w.shapes.size());
-    for (const Shape& s : w.shapes) {
-        prepared.push_back(M::prepare(to_scalar<T>(s)));
-    }
-    std::vector<Ray<T>> rays;
-    rays.reserve(w.samples.size());
-    for (const Sample& s : w.samples) {
-        rays.push_back(static_cast<Ray<T>>(s.ray));
-    }
-    std::vector<std::optional<PrimHit<T>>> res(rays.size());
-    // Repeat until 20 ms have passed so short runs still give a stable ns/test.
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    std::size_t passes = 0;
-    do {
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            res[i] = M::intersect(prepared[w.samples[i].shape], rays[i]);
-        }
-        ++passes;
-    } while (Clock::now() - start < std::chrono::milliseconds(20) && passes < 1000);
-    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
-                      static_cast<double>(std::max<std::size_t>(1, passes * rays.size()));
-
-    std::array<Accumulator, set_names.size()> per_set;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Truth& tr = w.truth[i];
-        per_set[w.samples[i].set].add(res[i].has_value(), tr.hit,
-                                      res[i] ? static_cast<double>(res[i]->t) : 0.0, tr.t);
-    }
-    Accumulator all;
-    for (const Accumulator& a : per_set) {
-        all.merge(a);
-    }
-    const std::string precision = std::is_same_v<T, float> ? "float" : "double";
-    rows.push_back(all.row(prim, std::string(M::name), precision, "all", ns));
-    if (opt.by_set) {
-        for (std::size_t s = 0; s < set_names.size(); ++s) {
-            rows.push_back(per_set[s].row(prim, std::string(M::name), precision, set_names[s], ns));
-        }
-    }
-}
-
-/// Runs the selected methods of a kind over a workload, float then double per method.
-template <template <class, class> class ForEach, class Shape>
-std::vector<Row> run_selected(const char* prim,
-                              const std::vector<std::string>& known,
-                              const Workload<Shape>& w,
-                              const Options& opt) {
-    std::vector<Row> rows;
-    for (const std::string& name : select_methods(known, opt.methods, prim)) {
-        const auto one = [&]<class M>() {
-            if (M::name == name) {
-                run_method<M>(prim, w, opt, rows);
-            }
-        };
-        if (opt.f32) {
-            ForEach<float, decltype(one)>::run(one);
-        }
-        if (opt.f64) {
-            ForEach<double, decltype(one)>::run(one);
-        }
-    }
-    return rows;
-}
-
-template <class T, class F>
-struct ForEachPolygon {
-    static void run(const F& f) { for_each_polygon_method<T>(f); }
+/// Visits the polygon methods of precision T (see run_wanted).
+constexpr auto for_each_polygon = [](auto tag, const auto& f) {
+    for_each_polygon_method<typename decltype(tag)::type>(f);
 };
 
-/// Method names of a kind from its compile-time list.
-template <template <class, class> class ForEach>
-std::vector<std::string> names_of() {
-    std::vector<std::string> names;
-    const auto add = [&]<class M>() { names.emplace_back(M::name); };
-    ForEach<float, decltype(add)>::run(add);
-    return names;
-}
+/// The float polygon in precision T, for the driver.
+constexpr auto convert = []<class T>(const Polygon<float>& p, std::type_identity<T>) {
+    return to_scalar<T>(p);
+};
 
 constexpr std::size_t shape_count = 64;
 
 }  // namespace
 
 std::vector<std::string> polygon_methods() {
-    return names_of<ForEachPolygon>();
+    return method_names(for_each_polygon);
 }
 
 std::vector<Row> check_polygons(const Options& opt) {
@@ -428,16 +277,15 @@ std::vector<Row> check_polygons(const Options& opt) {
         w.shapes.push_back(tp.poly);
     }
     // Shapes in contiguous blocks per set, so the oracle reuses one exact polygon per block.
-    const auto counts = split_rays(opt.rays);
-    for (std::size_t s = 0; s < counts.size(); ++s) {
-        for (std::size_t j = 0; j < counts[s]; ++j) {
-            Sample smp;
-            smp.shape = static_cast<std::uint32_t>(j * shape_count / counts[s]);
-            smp.set = static_cast<std::uint8_t>(s);
-            smp.ray = polygon_ray(rng, static_cast<RaySet>(s), tests[smp.shape]);
-            w.samples.push_back(smp);
-        }
-    }
+    const auto counts = split_rays<set_names.size()>(opt.rays);
+    w.samples = make_samples(
+        counts,
+        [&](std::size_t s, std::size_t j) {
+            return static_cast<std::uint32_t>(j * shape_count / counts[s]);
+        },
+        [&](std::size_t s, std::uint32_t shape) {
+            return polygon_ray(rng, static_cast<RaySet>(s), tests[shape]);
+        });
     w.truth.assign(w.samples.size(), Truth{});
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, w.samples.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -452,7 +300,7 @@ std::vector<Row> check_polygons(const Options& opt) {
                               w.truth[i] = exact->judge(s.ray);
                           }
                       });
-    return run_selected<ForEachPolygon>("polygon", polygon_methods(), w, opt);
+    return run_workload("polygon", set_names, for_each_polygon, w, convert, opt);
 }
 
 }  // namespace rtlab::xcheck

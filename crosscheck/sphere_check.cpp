@@ -1,13 +1,12 @@
 // Sphere methods against an exact oracle: hit/miss from CGAL Epeck (squared distance of the exact
 // window segment or ray to the centre against r^2, and "both ends strictly inside"), reference t
 // from the exact rational quadratic (GMP) with a 256-bit MPFR square root.
-#include "crosscheck/accumulator.h"
 #include "crosscheck/checks.h"
+#include "crosscheck/driver.h"
 #include "intersect/sphere/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
-#include <chrono>
 #include <cmath>
 #include <gmpxx.h>
 #include <mpfr.h>
@@ -215,86 +214,29 @@ std::vector<SphereSet> make_sets(std::size_t n, std::uint64_t seed) {
     return sets;
 }
 
-/// Runs method M on every set: accuracy pass, then a timed single-threaded pass.
-template <class M>
-void run_method(const std::vector<SphereSet>& sets,
-                const std::string& precision,
-                bool by_set,
-                std::vector<Row>& rows) {
-    using T = typename M::Scalar;
-    Accumulator all;
-    double all_ns = 0;
-    std::size_t all_rays = 0;
-    std::vector<Row> set_rows;
-    for (const SphereSet& set : sets) {
-        std::vector<typename M::Prepared> prepared;
-        std::vector<Ray<T>> rays;
-        prepared.reserve(set.cases.size());
-        rays.reserve(set.cases.size());
-        for (const SphereCase& c : set.cases) {
-            prepared.push_back(
-                M::prepare({Vec3<T>(c.sphere.center), static_cast<T>(c.sphere.radius)}));
-            rays.push_back(static_cast<Ray<T>>(c.ray));
-        }
-        Accumulator acc;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            const auto hit = M::intersect(prepared[i], rays[i]);
-            acc.add(hit.has_value(), set.oracle[i].hit, hit ? static_cast<double>(hit->t) : 0.0,
-                    set.oracle[i].t);
-        }
-        const auto start = std::chrono::steady_clock::now();
-        double sink = 0;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            if (const auto hit = M::intersect(prepared[i], rays[i])) {
-                sink += static_cast<double>(hit->t);
-            }
-        }
-        const double ns =
-            std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
-                .count();
-        volatile double keep = sink;
-        static_cast<void>(keep);
-        all.merge(acc);
-        all_ns += ns;
-        all_rays += rays.size();
-        if (by_set) {
-            set_rows.push_back(acc.row("sphere", std::string(M::name), precision, set.name,
-                                       rays.empty() ? 0.0 : ns / static_cast<double>(rays.size())));
-        }
-    }
-    rows.push_back(all.row("sphere", std::string(M::name), precision, "all",
-                           all_rays ? all_ns / static_cast<double>(all_rays) : 0.0));
-    rows.insert(rows.end(), set_rows.begin(), set_rows.end());
-}
+/// Visits the sphere methods of precision T (see run_wanted).
+constexpr auto for_each_sphere = [](auto tag, const auto& f) {
+    for_each_sphere_method<typename decltype(tag)::type>(f);
+};
+
+/// The case's sphere in precision T, for the driver.
+constexpr auto convert = []<class T>(const SphereCase& c, std::type_identity<T>) {
+    return Sphere<T>{Vec3<T>(c.sphere.center), static_cast<T>(c.sphere.radius)};
+};
 
 }  // namespace
 
 std::vector<std::string> sphere_methods() {
-    std::vector<std::string> names;
-    for_each_sphere_method<float>([&]<class M>() { names.emplace_back(M::name); });
-    return names;
+    return method_names(for_each_sphere);
 }
 
 std::vector<Row> check_spheres(const Options& opt) {
     const std::vector<std::string> wanted = select_methods(sphere_methods(), opt.methods, "sphere");
     const std::vector<SphereSet> sets = make_sets(opt.rays, opt.seed);
     std::vector<Row> rows;
-    for (const std::string& name : wanted) {
-        if (opt.f32) {
-            for_each_sphere_method<float>([&]<class M>() {
-                if (M::name == name) {
-                    run_method<M>(sets, "float", opt.by_set, rows);
-                }
-            });
-        }
-        if (opt.f64) {
-            for_each_sphere_method<double>([&]<class M>() {
-                if (M::name == name) {
-                    run_method<M>(sets, "double", opt.by_set, rows);
-                }
-            });
-        }
-    }
+    run_wanted(wanted, opt, for_each_sphere, [&]<class M>() {
+        run_case_sets<M>("sphere", std::string(M::name), sets, convert, opt.by_set, rows);
+    });
     return rows;
 }
 

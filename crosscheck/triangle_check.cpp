@@ -2,8 +2,8 @@
 // ray over a closed, vertex-perturbed sphere mesh by brute force; CGAL's exact kernel (Epeck, with
 // an AABB tree) gives the exact closest hit of the same ray. Rays are generated in float so both
 // precisions trace the identical ray.
-#include "crosscheck/accumulator.h"
 #include "crosscheck/checks.h"
+#include "crosscheck/driver.h"
 #include "intersect/triangle/methods.h"
 #include "intersect/triangle/sphere_mesh.h"
 
@@ -260,7 +260,6 @@ void run_method(const IndexedMesh& mesh,
                 const std::vector<RaySet>& sets,
                 const std::vector<std::vector<Answer>>& exact,
                 const Options& opt,
-                std::string_view precision,
                 std::vector<Row>& rows) {
     using T = typename M::Scalar;
     constexpr bool has_t = IntersectionMethod<M>;
@@ -269,10 +268,7 @@ void run_method(const IndexedMesh& mesh,
     for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
         prims.push_back(M::prepare(mesh.triangle<T>(i)));
     }
-    Accumulator all(has_t);
-    double all_ns = 0;
-    std::size_t all_tests = 0;
-    std::vector<Row> set_rows;
+    MethodRows out("triangle", std::string(M::name), precision_name<T>(), opt.by_set, has_t);
     for (std::size_t s = 0; s < sets.size(); ++s) {
         std::vector<Answer> answers(sets[s].rays.size());
         std::size_t tests = 0;
@@ -301,41 +297,20 @@ void run_method(const IndexedMesh& mesh,
         for (std::size_t i = 0; i < answers.size(); ++i) {
             acc.add(answers[i].hit, exact[s][i].hit, answers[i].t, exact[s][i].t);
         }
-        all.merge(acc);
-        all_ns += ns;
-        all_tests += tests;
-        if (opt.by_set) {
-            set_rows.push_back(acc.row("triangle", std::string(M::name), std::string(precision),
-                                       sets[s].name,
-                                       tests ? ns / static_cast<double>(tests) : 0.0));
-        }
+        out.add_set(acc, sets[s].name, ns, tests);
     }
-    rows.push_back(all.row("triangle", std::string(M::name), std::string(precision), "all",
-                           all_tests ? all_ns / static_cast<double>(all_tests) : 0.0));
-    rows.insert(rows.end(), set_rows.begin(), set_rows.end());
+    out.emit(rows);
 }
 
-template <class T>
-void run_named(std::string_view name,
-               const IndexedMesh& mesh,
-               const std::vector<RaySet>& sets,
-               const std::vector<std::vector<Answer>>& exact,
-               const Options& opt,
-               std::vector<Row>& rows) {
-    const std::string_view precision = std::is_same_v<T, float> ? "float" : "double";
-    for_each_triangle_method<T>([&]<class M>() {
-        if (M::name == name) {
-            run_method<M>(mesh, sets, exact, opt, precision, rows);
-        }
-    });
-}
+/// Visits the triangle methods of precision T (see run_wanted).
+constexpr auto for_each_triangle = [](auto tag, const auto& f) {
+    for_each_triangle_method<typename decltype(tag)::type>(f);
+};
 
 }  // namespace
 
 std::vector<std::string> triangle_methods() {
-    std::vector<std::string> names;
-    for_each_triangle_method<float>([&]<class M>() { names.emplace_back(M::name); });
-    return names;
+    return method_names(for_each_triangle);
 }
 
 std::vector<Row> check_triangles(const Options& opt) {
@@ -348,14 +323,8 @@ std::vector<Row> check_triangles(const Options& opt) {
         exact.push_back(exact_answers(mesh, s.rays));
     }
     std::vector<Row> rows;
-    for (const std::string& m : methods) {
-        if (opt.f32) {
-            run_named<float>(m, mesh, sets, exact, opt, rows);
-        }
-        if (opt.f64) {
-            run_named<double>(m, mesh, sets, exact, opt, rows);
-        }
-    }
+    run_wanted(methods, opt, for_each_triangle,
+               [&]<class M>() { run_method<M>(mesh, sets, exact, opt, rows); });
     return rows;
 }
 
