@@ -33,13 +33,13 @@ std::string format_err(double e) {
 }
 
 void print_table(const std::vector<xcheck::Row>& rows, bool by_set) {
-    std::cout << fmt::format("{:<9} {:<17} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9}\n",
+    std::cout << fmt::format("{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9}\n",
                              "prim", "method", "prec", by_set ? fmt::format("{:<10} ", "set") : "",
                              "rays", "agree", "false_hit", "false_miss", "max_rel_t", "med_rel_t",
                              "ns/test");
     for (const xcheck::Row& r : rows) {
         std::cout << fmt::format(
-            "{:<9} {:<17} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9.2f}\n", r.prim,
+            "{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9.2f}\n", r.prim,
             r.method, r.precision, by_set ? fmt::format("{:<10} ", r.set) : "", r.rays, r.agree,
             r.false_hit, r.false_miss, format_err(r.max_rel_t_err), format_err(r.median_rel_t_err),
             r.ns_per_test);

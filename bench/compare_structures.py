@@ -84,8 +84,8 @@ def main():
     kinds = ["primary", "shadow", "diffuse"]
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        ext = "ply" if args.as_ == "mesh" else "json"
-        scene = os.path.join(tmp, f"scene.{ext}")
+        # A JSON scene keeps the generator's camera and lights (the SPD view for the flake).
+        scene = os.path.join(tmp, "scene.json")
         gen = [rtlab, "gen", args.gen, "--size", str(args.size), "--as", args.as_, "-o", scene]
         if args.as_ == "mesh":
             gen += ["--tess", args.tess]
