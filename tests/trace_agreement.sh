@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every registered structure gives the same hit file as brute force through `rtlab trace`, on a
-# tessellated sphere flake and on a random triangle soup, for closest-hit and any-hit rays.
+# tessellated sphere flake and on a random triangle soup, for closest-hit and any-hit rays, and
+# hit files do not depend on the thread count.
 # Run by CTest with RTLAB set to the executable.
 set -euo pipefail
 : "${RTLAB:?set RTLAB to the rtlab executable}"
@@ -31,5 +32,14 @@ for scene in flake.ply soup.ply; do
         done
     done
 done
+# Results do not depend on the thread count: byte-identical hit files with 1 and 2 threads.
+for accel in bvh:binned kdtree:sah grid:uniform; do
+    for threads in 1 2; do
+        "$RTLAB" trace --scene "$tmp/flake.ply" --rays "$tmp/flake.ply.random.rays" --accel "$accel" \
+            --threads $threads --hits "$tmp/t$threads.hits" >/dev/null
+    done
+    cmp -s "$tmp/t1.hits" "$tmp/t2.hits" || { echo "FAIL: $accel hits differ between 1 and 2 threads"; fail=1; }
+done
+
 [[ $fail -eq 0 ]] && echo "trace agreement: every structure matches brute force"
 exit $fail
