@@ -15,27 +15,10 @@ namespace rtlab {
 
 /// Möller–Trumbore ray/triangle test, templated on the scalar type.
 template <class T>
-struct MollerTrumbore {
-    using Scalar = T;
-    using Shape = Triangle<T>;
-
-    /// The vertices as given; a zero-area triangle is stored collapsed to one point (det == 0).
-    struct Prepared {
-        Vec3<T> p0, p1, p2;
-    };
+struct MollerTrumbore : VertexTriangleMethod<T> {
+    using typename VertexTriangleMethod<T>::Prepared;
 
     static constexpr std::string_view name = "moller_trumbore";
-
-    /// Store the vertices (collapsed to p0 when the triangle has zero area).
-    static Prepared prepare(const Shape& s) {
-        if (is_degenerate(s.p0, s.p1, s.p2)) {
-            return {s.p0, s.p0, s.p0};
-        }
-        return {s.p0, s.p1, s.p2};
-    }
-
-    /// Box around the three vertices.
-    static Bounds3<T> bounds(const Prepared& p) { return triangle_bounds(p.p0, p.p1, p.p2); }
 
     /// Hit with t in [ray.tmin, ray.tmax] and barycentrics u (p1), v (p2), or nullopt.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {

@@ -86,6 +86,31 @@ bool is_degenerate(const Vec3<T>& p0, const Vec3<T>& p1, const Vec3<T>& p2) {
            detail::orientation_is_zero(p0, p1, p2, 2, 0);
 }
 
+/// Shared by the methods that keep just the three vertices (Möller–Trumbore, watertight): the
+/// shape and prepared types, prepare() and bounds(). A zero-area triangle is stored collapsed to
+/// one point, so its determinant is exactly 0 and it never hits.
+template <class T>
+struct VertexTriangleMethod {
+    using Scalar = T;
+    using Shape = Triangle<T>;
+
+    /// The vertices as given (collapsed to p0 when the triangle has zero area).
+    struct Prepared {
+        Vec3<T> p0, p1, p2;
+    };
+
+    /// Store the vertices (collapsed to p0 when the triangle has zero area).
+    static Prepared prepare(const Shape& s) {
+        if (is_degenerate(s.p0, s.p1, s.p2)) {
+            return {s.p0, s.p0, s.p0};
+        }
+        return {s.p0, s.p1, s.p2};
+    }
+
+    /// Box around the three vertices.
+    static Bounds3<T> bounds(const Prepared& p) { return triangle_bounds(p.p0, p.p1, p.p2); }
+};
+
 /// True when t is finite and inside the ray window [tmin, tmax]; false for NaN.
 template <class T>
 constexpr bool in_window(T t, const Ray<T>& ray) {
