@@ -7,6 +7,7 @@
 // exactly (the very parallelepiped the method describes), the ray clipped with GMP rationals.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/ray_sets.h"
 #include "intersect/box/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -385,6 +386,65 @@ std::vector<Row> check_obbs(const Options& opt) {
         });
     compute_truth(w, obb_truth);
     return run_workload("obb", set_names, for_each_obb, w, convert, opt);
+}
+
+namespace {
+
+/// The box-local sets behind the bench distributions (far is a pushed-back random ray).
+constexpr std::array<RaySet, 4> bench_from{random_set, edges_set, grazing_set, random_set};
+
+}  // namespace
+
+BenchCases<Bounds3f> aabb_bench_cases(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
+    BenchCases<Bounds3f> out;
+    out.shapes = make_aabbs(rng, shape_count);
+    for (std::size_t s = 0; s < bench_from.size(); ++s) {
+        for (std::size_t j = 0; j < n; ++j) {
+            Sample smp;
+            smp.shape = rng.below(shape_count);
+            smp.set = static_cast<std::uint8_t>(s);
+            const Bounds3f& b = out.shapes[smp.shape];
+            smp.ray = local_ray(rng, bench_from[s], b.lo, b.hi);
+            if (s == bench_far) {
+                smp.ray = push_far(rng, smp.ray);
+            }
+            out.samples.push_back(smp);
+        }
+    }
+    Workload<Bounds3f> w{out.shapes, out.samples, {}};
+    compute_truth(w, aabb_truth);
+    out.truth = std::move(w.truth);
+    return out;
+}
+
+BenchCases<Obb<float>> obb_bench_cases(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
+    BenchCases<Obb<float>> out;
+    out.shapes = make_obbs(rng, shape_count);
+    for (std::size_t s = 0; s < bench_from.size(); ++s) {
+        for (std::size_t j = 0; j < n; ++j) {
+            Sample smp;
+            smp.shape = rng.below(shape_count);
+            smp.set = static_cast<std::uint8_t>(s);
+            const Obb<float>& b = out.shapes[smp.shape];
+            const Rayf local = local_ray(rng, bench_from[s], -b.half, b.half);
+            const auto world = [&](const Vec3f& p) {
+                return b.axis[0] * p.x + b.axis[1] * p.y + b.axis[2] * p.z;
+            };
+            smp.ray = local;
+            smp.ray.org = b.center + world(local.org);
+            smp.ray.dir = world(local.dir);
+            if (s == bench_far) {
+                smp.ray = push_far(rng, smp.ray);
+            }
+            out.samples.push_back(smp);
+        }
+    }
+    Workload<Obb<float>> w{out.shapes, out.samples, {}};
+    compute_truth(w, obb_truth);
+    out.truth = std::move(w.truth);
+    return out;
 }
 
 }  // namespace rtlab::xcheck

@@ -4,6 +4,8 @@
 // root isolated by Sturm bisection and refined by 256-bit MPFR bisection to < 2^-110 relative.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/exact.h"
+#include "crosscheck/ray_sets.h"
 #include "intersect/implicit/methods.h"
 
 #include <cmath>
@@ -19,197 +21,13 @@ namespace rtlab::xcheck {
 
 namespace {
 
+/// The exact answer: hit in [tmin, tmax] and the smallest root there (rounded to double).
+using ImplicitOracle = ExactRoot;
+
 using Q = mpq_class;
 
-/// A polynomial over Q, ascending coefficients, no zero leading coefficient (empty = 0).
+/// A polynomial over Q, ascending coefficients.
 using QPoly = std::vector<Q>;
-
-void trim(QPoly& p) {
-    while (!p.empty() && p.back() == 0) {
-        p.pop_back();
-    }
-}
-
-Q eval(const QPoly& p, const Q& x) {
-    Q v = 0;
-    for (std::size_t i = p.size(); i-- > 0;) {
-        v = v * x + p[i];
-    }
-    return v;
-}
-
-int sign(const Q& x) {
-    return sgn(x);
-}
-
-/// Remainder of a divided by b (b non-zero).
-QPoly remainder(QPoly a, const QPoly& b) {
-    while (a.size() >= b.size() && !a.empty()) {
-        const Q f = a.back() / b.back();
-        const std::size_t shift = a.size() - b.size();
-        for (std::size_t i = 0; i < b.size(); ++i) {
-            a[i + shift] -= f * b[i];
-        }
-        a.pop_back();  // the leading term cancels exactly
-        trim(a);
-    }
-    return a;
-}
-
-/// The Sturm sequence p, p', -rem(p, p'), ... down to the last non-zero remainder.
-std::vector<QPoly> sturm(const QPoly& p) {
-    std::vector<QPoly> seq{p};
-    QPoly d;
-    for (std::size_t i = 1; i < p.size(); ++i) {
-        d.push_back(p[i] * static_cast<long>(i));
-    }
-    trim(d);
-    if (d.empty()) {
-        return seq;
-    }
-    seq.push_back(d);
-    for (;;) {
-        QPoly r = remainder(seq[seq.size() - 2], seq.back());
-        if (r.empty()) {
-            break;
-        }
-        for (Q& c : r) {
-            c = -c;
-        }
-        seq.push_back(std::move(r));
-    }
-    return seq;
-}
-
-/// Sign variations of the sequence at x (zeros skipped).
-int variations(const std::vector<QPoly>& seq, const Q& x) {
-    int count = 0, last = 0;
-    for (const QPoly& p : seq) {
-        const int s = sign(eval(p, x));
-        if (s != 0) {
-            count += (last != 0 && s != last) ? 1 : 0;
-            last = s;
-        }
-    }
-    return count;
-}
-
-/// p(x) in MPFR for the n coefficients c (ascending), at the precision of out.
-void eval_mpfr(const mpfr_t* c, std::size_t n, const mpfr_t x, mpfr_t out) {
-    mpfr_set(out, c[n - 1], MPFR_RNDN);
-    for (std::size_t i = n - 1; i-- > 0;) {
-        mpfr_mul(out, out, x, MPFR_RNDN);
-        mpfr_add(out, out, c[i], MPFR_RNDN);
-    }
-}
-
-/// The exact answer: hit in [tmin, tmax] and the smallest root there (rounded to double).
-struct ImplicitOracle {
-    bool hit = false;
-    double t = 0;
-};
-
-/// Exact oracle for the polynomial p over the window [tmin, tmax] (tmax may be infinite).
-ImplicitOracle solve_exact(QPoly p, float tmin, float tmax) {
-    trim(p);
-    ImplicitOracle out;
-    if (p.size() < 2) {
-        return out;  // constant along the ray (a zero polynomial cannot occur for d != 0)
-    }
-    Q lo(static_cast<double>(tmin));
-    if (eval(p, lo) == 0) {
-        return {true, static_cast<double>(tmin)};
-    }
-    Q hi;
-    if (std::isinf(tmax)) {
-        // Cauchy bound: every root is below 1 + max |c_i / c_n|.
-        Q bound = 0;
-        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-            bound = std::max<Q>(bound, abs(p[i] / p.back()));
-        }
-        hi = std::max<Q>(bound + 1, lo + 1);
-    } else {
-        hi = Q(static_cast<double>(tmax));
-    }
-    const std::vector<QPoly> seq = sturm(p);
-    int v_lo = variations(seq, lo);
-    int n = v_lo - variations(seq, hi);  // distinct roots in (lo, hi]
-    if (n <= 0) {
-        return out;
-    }
-    out.hit = true;
-    // Isolate the smallest root: keep the lower half whenever it holds a root.
-    for (int step = 0; step < 400 && n > 1; ++step) {
-        const Q mid = (lo + hi) / 2;
-        const int v_mid = variations(seq, mid);
-        if (v_lo - v_mid >= 1) {
-            hi = mid;
-            n = v_lo - v_mid;
-        } else {
-            lo = mid;
-            v_lo = v_mid;
-        }
-    }
-    if (eval(p, hi) == 0) {
-        out.t = hi.get_d();
-        return out;
-    }
-    if (sign(eval(p, lo)) == sign(eval(p, hi))) {
-        // Even multiplicity (exact tangency): no sign change; keep bisecting by Sturm counts.
-        for (int step = 0; step < 130; ++step) {
-            const Q mid = (lo + hi) / 2;
-            const int v_mid = variations(seq, mid);
-            if (v_lo - v_mid >= 1) {
-                hi = mid;
-            } else {
-                lo = mid;
-                v_lo = v_mid;
-            }
-        }
-        out.t = Q((lo + hi) / 2).get_d();
-        return out;
-    }
-    // Simple (odd-multiplicity) root with a sign change: 256-bit MPFR bisection; coefficients
-    // rounded to 256 bits, far below the 110 bits the refinement needs.
-    const int s_lo = sign(eval(p, lo));
-    if (p.size() > 5) {
-        throw std::logic_error("implicit oracle: degree above 4");
-    }
-    mpfr_t c[5];
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        mpfr_init2(c[i], 256);
-        mpfr_set_q(c[i], p[i].get_mpq_t(), MPFR_RNDN);
-    }
-    mpfr_t a, b, m, v, w;
-    mpfr_inits2(256, a, b, m, v, w, static_cast<mpfr_ptr>(nullptr));
-    mpfr_set_q(a, lo.get_mpq_t(), MPFR_RNDN);
-    mpfr_set_q(b, hi.get_mpq_t(), MPFR_RNDN);
-    for (int step = 0; step < 600; ++step) {
-        mpfr_add(m, a, b, MPFR_RNDN);
-        mpfr_div_2ui(m, m, 1, MPFR_RNDN);
-        mpfr_sub(w, b, a, MPFR_RNDN);
-        mpfr_abs(v, m, MPFR_RNDN);
-        mpfr_mul_2si(v, v, -110, MPFR_RNDN);
-        if (mpfr_cmp(w, v) <= 0) {
-            break;
-        }
-        eval_mpfr(c, p.size(), m, v);
-        if (mpfr_sgn(v) == 0) {
-            break;
-        }
-        if (mpfr_sgn(v) == s_lo) {
-            mpfr_set(a, m, MPFR_RNDN);
-        } else {
-            mpfr_set(b, m, MPFR_RNDN);
-        }
-    }
-    out.t = mpfr_get_d(m, MPFR_RNDN);
-    mpfr_clears(a, b, m, v, w, static_cast<mpfr_ptr>(nullptr));
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        mpfr_clear(c[i]);
-    }
-    return out;
-}
 
 Q exact(float x) {
     return Q(static_cast<double>(x));
@@ -217,23 +35,7 @@ Q exact(float x) {
 
 /// Exact ray polynomial of a torus (the expansion of Torus::along over Q).
 QPoly exact_along(const Torus<float>& s, const Vec3f& o, const Vec3f& d) {
-    Q a = 0, b = 0, c = 0, ea = 0, eb = 0, ec = 0;
-    for (std::size_t k = 0; k < 3; ++k) {
-        const Q q = exact(o[k]) - exact(s.center[k]);
-        const Q dk = exact(d[k]);
-        a += dk * dk;
-        b += 2 * q * dk;
-        c += q * q;
-        if (k < 2) {
-            ea += dk * dk;
-            eb += 2 * q * dk;
-            ec += q * q;
-        }
-    }
-    const Q big = exact(s.major), small = exact(s.minor);
-    c += big * big - small * small;
-    const Q r4 = 4 * big * big;
-    return {c * c - r4 * ec, 2 * b * c - r4 * eb, b * b + 2 * a * c - r4 * ea, 2 * a * b, a * a};
+    return exact_torus_along({Vec3d(s.center), s.major, s.minor}, Vec3d(o), Vec3d(d));
 }
 
 /// Exact ray polynomial of a tangle cube (constant 11.8 = 59/5 exactly).
@@ -360,8 +162,8 @@ std::vector<ImplicitSet<S>> make_sets(std::size_t n, std::uint64_t seed) {
         set.oracle.resize(set.cases.size());
         tbb::parallel_for(std::size_t(0), set.cases.size(), [&](std::size_t i) {
             const ImplicitCase<S>& c = set.cases[i];
-            set.oracle[i] =
-                solve_exact(exact_along(c.surface, c.ray.org, c.ray.dir), c.ray.tmin, c.ray.tmax);
+            set.oracle[i] = exact_first_root(exact_along(c.surface, c.ray.org, c.ray.dir),
+                                             c.ray.tmin, c.ray.tmax);
         });
         sets.push_back(std::move(set));
     }
@@ -425,6 +227,63 @@ std::vector<Row> check_implicits(const Options& opt) {
     run_surface<Torus>(opt, wanted, rows);
     run_surface<TangleCube>(opt, wanted, rows);
     return rows;
+}
+
+namespace {
+
+/// The check's random and grazing sets of surface kind S (n rays each), then far rays: from
+/// 1e2 to 1e3 box diagonals away to a uniform point of the box.
+template <template <class> class S>
+BenchCases<S<float>> implicit_bench_cases(std::size_t n, std::uint64_t seed) {
+    const std::vector<ImplicitSet<S>> sets = make_sets<S>(3 * n, seed);
+    BenchCases<S<float>> out;
+    const auto add = [&](const ImplicitCase<S>& c, const ImplicitOracle& o, BenchSet set) {
+        Sample smp;
+        smp.ray = c.ray;
+        smp.shape = static_cast<std::uint32_t>(out.shapes.size());
+        smp.set = set;
+        out.shapes.push_back(c.surface);
+        out.samples.push_back(smp);
+        out.truth.push_back({o.hit, o.t});
+    };
+    for (const ImplicitSet<S>& set : sets) {
+        const BenchSet bs = set.name == "random" ? bench_random : bench_grazing;
+        if (set.name == "random" || set.name == "grazing") {
+            for (std::size_t i = 0; i < set.cases.size(); ++i) {
+                add(set.cases[i], set.oracle[i], bs);
+            }
+        }
+    }
+    std::mt19937_64 rng(seed * 0xD1B54A32D192ED03ull + 1001 + 17 * S<float>::name.size());
+    std::vector<ImplicitCase<S>> far(n);
+    for (ImplicitCase<S>& c : far) {
+        c.surface = random_surface(rng, static_cast<const S<float>*>(nullptr));
+        const Bounds3f box = c.surface.bounds();
+        const Vec3f target =
+            box.lo + box.diagonal() * Vec3f{uni(rng, 0, 1), uni(rng, 0, 1), uni(rng, 0, 1)};
+        const Vec3f org = box.center() + random_unit(rng) * (length(box.diagonal()) *
+                                                             std::pow(10.0f, uni(rng, 2, 3)));
+        c.ray = {org, target - org};
+    }
+    std::vector<ImplicitOracle> oracle(far.size());
+    tbb::parallel_for(std::size_t(0), far.size(), [&](std::size_t i) {
+        oracle[i] = exact_first_root(exact_along(far[i].surface, far[i].ray.org, far[i].ray.dir),
+                                     far[i].ray.tmin, far[i].ray.tmax);
+    });
+    for (std::size_t i = 0; i < far.size(); ++i) {
+        add(far[i], oracle[i], bench_far);
+    }
+    return out;
+}
+
+}  // namespace
+
+BenchCases<Torus<float>> torus_bench_cases(std::size_t n, std::uint64_t seed) {
+    return implicit_bench_cases<Torus>(n, seed);
+}
+
+BenchCases<TangleCube<float>> tangle_bench_cases(std::size_t n, std::uint64_t seed) {
+    return implicit_bench_cases<TangleCube>(n, seed);
 }
 
 }  // namespace rtlab::xcheck

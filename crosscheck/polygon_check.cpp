@@ -9,6 +9,7 @@
 // the dominant axis of N, ties to the lowest index) says bounded or boundary.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/ray_sets.h"
 #include "intersect/polygon/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -301,6 +302,34 @@ std::vector<Row> check_polygons(const Options& opt) {
                           }
                       });
     return run_workload("polygon", set_names, for_each_polygon, w, convert, opt);
+}
+
+BenchCases<Polygon<float>> polygon_bench_cases(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
+    const std::vector<TestPolygon> tests = make_polygons(rng, shape_count);
+    BenchCases<Polygon<float>> out;
+    for (const TestPolygon& tp : tests) {
+        out.shapes.push_back(tp.poly);
+    }
+    const std::array<RaySet, 4> from{random_set, edges_set, grazing_set, random_set};
+    for (std::size_t s = 0; s < from.size(); ++s) {
+        for (std::size_t j = 0; j < n; ++j) {
+            Sample smp;
+            smp.shape = static_cast<std::uint32_t>(j * shape_count / n);
+            smp.set = static_cast<std::uint8_t>(s);
+            smp.ray = polygon_ray(rng, from[s], tests[smp.shape]);
+            if (s == bench_far) {
+                smp.ray = push_far(rng, smp.ray);
+            }
+            out.samples.push_back(smp);
+        }
+    }
+    out.truth.assign(out.samples.size(), Truth{});
+    tbb::parallel_for(std::size_t(0), out.samples.size(), [&](std::size_t i) {
+        const Sample& smp = out.samples[i];
+        out.truth[i] = ExactPolygon(out.shapes[smp.shape]).judge(smp.ray);
+    });
+    return out;
 }
 
 }  // namespace rtlab::xcheck

@@ -3,6 +3,7 @@
 // from the exact rational quadratic (GMP) with a 256-bit MPFR square root.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/ray_sets.h"
 #include "intersect/sphere/methods.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -238,6 +239,31 @@ std::vector<Row> check_spheres(const Options& opt) {
         run_case_sets<M>("sphere", std::string(M::name), sets, convert, opt.by_set, rows);
     });
     return rows;
+}
+
+BenchCases<Sphere<float>> sphere_bench_cases(std::size_t n, std::uint64_t seed) {
+    // The check's sets, n rays each (7 sets); the bench keeps random, grazing and far_small.
+    const std::vector<SphereSet> sets = make_sets(7 * n, seed);
+    BenchCases<Sphere<float>> out;
+    const std::array<std::pair<const char*, BenchSet>, 3> kept{
+        {{"random", bench_random}, {"grazing", bench_grazing}, {"far_small", bench_far}}};
+    for (const auto& [name, bench_set] : kept) {
+        for (const SphereSet& set : sets) {
+            if (set.name != name) {
+                continue;
+            }
+            for (std::size_t i = 0; i < set.cases.size(); ++i) {
+                Sample smp;
+                smp.ray = set.cases[i].ray;
+                smp.shape = static_cast<std::uint32_t>(out.shapes.size());
+                smp.set = bench_set;
+                out.shapes.push_back(set.cases[i].sphere);
+                out.samples.push_back(smp);
+                out.truth.push_back({set.oracle[i].hit, set.oracle[i].t});
+            }
+        }
+    }
+    return out;
 }
 
 }  // namespace rtlab::xcheck

@@ -4,6 +4,7 @@
 // precisions trace the identical ray.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/ray_sets.h"
 #include "intersect/triangle/methods.h"
 #include "intersect/triangle/sphere_mesh.h"
 
@@ -326,6 +327,47 @@ std::vector<Row> check_triangles(const Options& opt) {
     run_wanted(methods, opt, for_each_triangle,
                [&]<class M>() { run_method<M>(mesh, sets, exact, opt, rows); });
     return rows;
+}
+
+BenchCases<Triangle<float>> triangle_bench_cases(std::size_t n, std::uint64_t seed) {
+    const IndexedMesh mesh = perturbed_sphere_mesh(seed);
+    BenchCases<Triangle<float>> out;
+    out.closest_of_all = true;
+    for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+        out.shapes.push_back(mesh.triangle<float>(i));
+    }
+    // The check's sets "outside", "edge" and "grazing" (n rays each), then far rays from 1e3 to
+    // 1e4 mesh radii away aimed into the ball of radius 1.2.
+    const std::vector<RaySet> sets = make_ray_sets(mesh, 6 * n, seed);
+    const auto find = [&](std::string_view name) -> const std::vector<Rayf>& {
+        for (const RaySet& s : sets) {
+            if (s.name == name) {
+                return s.rays;
+            }
+        }
+        return sets.back().rays;
+    };
+    std::vector<Rayf> far;
+    Sampler rng(seed * 0x9E3779B97F4A7C15ull + 101);
+    for (std::size_t i = 0; i < n; ++i) {
+        Rayf r;
+        r.org = to_float(rng.unit() * rng.uniform(1e3, 1e4));
+        r.dir = to_float(rng.ball(1.2)) - r.org;
+        far.push_back(r);
+    }
+    const std::array<const std::vector<Rayf>*, 4> by_set{&find("outside"), &find("edge"),
+                                                         &find("grazing"), &far};
+    for (std::size_t s = 0; s < by_set.size(); ++s) {
+        const std::vector<Answer> exact = exact_answers(mesh, *by_set[s]);
+        for (std::size_t i = 0; i < exact.size(); ++i) {
+            Sample smp;
+            smp.ray = (*by_set[s])[i];
+            smp.set = static_cast<std::uint8_t>(s);
+            out.samples.push_back(smp);
+            out.truth.push_back({exact[i].hit, exact[i].t});
+        }
+    }
+    return out;
 }
 
 }  // namespace rtlab::xcheck

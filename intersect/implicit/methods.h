@@ -72,9 +72,10 @@ struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T
         return implicit_intersect(p, ray, [](const auto& poly) { return first_root(poly); });
     }
 
-    /// First root of poly in [0, 1] by marching and bracketed Newton.
+    /// First root of poly in [0, 1] by marching and bracketed Newton of at most max_iter steps
+    /// per refinement (the default converges; the benchmarks cap it to measure the error).
     template <std::size_t N>
-    static std::optional<T> first_root(const Polynomial<T, N>& poly) {
+    static std::optional<T> first_root(const Polynomial<T, N>& poly, int max_iter = 100) {
         const auto dpoly = poly.derivative();
         const auto fdf = [&](T u) {
             T v, d;
@@ -94,17 +95,17 @@ struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T
             const T ub = static_cast<T>(i) / static_cast<T>(steps);
             const T vb = poly(ub), db = dpoly(ub);
             if ((va < T(0)) != (vb < T(0)) || vb == T(0)) {
-                return newton_bisect(fdf, ua, ub);
+                return newton_bisect(fdf, ua, ub, max_iter);
             }
             if ((da < T(0)) != (db < T(0))) {
                 // An extremum inside: if p there reaches the other sign, a root pair straddles it.
-                if (const std::optional<T> uc = newton_bisect(dfdf, ua, ub)) {
+                if (const std::optional<T> uc = newton_bisect(dfdf, ua, ub, max_iter)) {
                     const T vc = poly(*uc);
                     if (vc == T(0)) {
                         return uc;
                     }
                     if ((vc < T(0)) != (va < T(0))) {
-                        return newton_bisect(fdf, ua, *uc);
+                        return newton_bisect(fdf, ua, *uc, max_iter);
                     }
                 }
             }

@@ -1,0 +1,54 @@
+#pragma once
+// Exact references shared by the cross-checks and the stability suite (stability/): the nearest
+// root of a ray against a sphere, a triangle or a polynomial surface, decided in exact rationals
+// (GMP) and evaluated with MPFR where a square root or an irrational root is needed. Inputs are
+// doubles, so float inputs (exactly representable as doubles) give the answer for the float shape.
+
+#include "intersect/implicit/torus.h"
+#include "intersect/ray.h"
+#include "intersect/triangle/triangle.h"
+#include "intersect/vec.h"
+
+#include <gmpxx.h>
+#include <vector>
+
+namespace rtlab::xcheck {
+
+/// An exact answer: whether the window [tmin, tmax] holds a root, and the smallest one (rounded
+/// to double; 0 on a miss).
+struct ExactRoot {
+    bool hit = false;
+    double t = 0;
+};
+
+/// Exact sphere answer: the smallest t in [tmin, tmax] (tmax may be +inf) with
+/// |org + t dir - center| = radius, decided in rationals; the root itself from a 256-bit MPFR
+/// square root. dir must be non-zero.
+ExactRoot exact_sphere_root(const Vec3d& center, double radius, const Rayd& ray);
+
+/// Both roots of the sphere's ray quadratic (entering <= leaving), 256-bit MPFR rounded to double;
+/// false when the line misses (negative discriminant). dir must be non-zero.
+bool exact_sphere_roots(
+    const Vec3d& center, double radius, const Rayd& ray, double& t0, double& t1);
+
+/// Exact ray-triangle answer (two-sided, edges inclusive) by Cramer's rule in rationals.
+struct ExactTriangleHit {
+    bool hit = false;       ///< the ray meets the closed triangle at one point in [tmin, tmax]
+    double t = 0;           ///< that point's t, rounded to double (0 on a miss)
+    bool boundary = false;  ///< undecidable by rounding-free methods: the ray meets an edge or a
+                            ///< vertex exactly, or lies in the triangle's plane (det == 0)
+};
+
+/// The exact answer for one triangle (vertices and ray as given, no degeneracy handling: a
+/// zero-area triangle gives det == 0, i.e. boundary and no hit).
+ExactTriangleHit exact_triangle_hit(const Triangled& tri, const Rayd& ray);
+
+/// Exact first root of the polynomial p (ascending rational coefficients) in [tmin, tmax]
+/// (tmax may be +inf): distinct roots counted by a Sturm sequence over Q, the smallest isolated
+/// by Sturm bisection, refined by 256-bit MPFR bisection to < 2^-110 relative.
+ExactRoot exact_first_root(std::vector<mpq_class> p, double tmin, double tmax);
+
+/// The exact ray polynomial of a torus: Torus::along expanded over Q.
+std::vector<mpq_class> exact_torus_along(const Torus<double>& s, const Vec3d& o, const Vec3d& d);
+
+}  // namespace rtlab::xcheck

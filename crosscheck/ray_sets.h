@@ -1,0 +1,70 @@
+#pragma once
+// The cross-check's seeded shapes, ray sets and exact answers, for the benchmarks (bench/): per
+// primitive kind, the rays of four distributions (random, edge-aimed, grazing, far) drawn with
+// the same generators and judged by the same oracles as `rtlab crosscheck`, computed once.
+// A kind without edges (sphere, implicit surfaces) has no edge rays. Each function is defined in
+// the kind's <kind>_check.cpp, beside its oracle.
+
+#include "crosscheck/driver.h"
+#include "intersect/bounds.h"
+#include "intersect/box/obb.h"
+#include "intersect/implicit/tangle_cube.h"
+#include "intersect/implicit/torus.h"
+#include "intersect/polygon/polygon.h"
+#include "intersect/sphere/sphere.h"
+#include "intersect/triangle/triangle.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace rtlab::xcheck {
+
+/// The benchmark ray distributions; Sample::set is an index into this array.
+inline constexpr std::array<std::string_view, 4> bench_set_names{"random", "edge", "grazing",
+                                                                 "far"};
+
+/// Index of each distribution in bench_set_names.
+enum BenchSet : std::uint8_t { bench_random, bench_edge, bench_grazing, bench_far };
+
+/// One kind's benchmark cases: sample i tests shapes[samples[i].shape] (or, when closest_of_all,
+/// every shape for the closest hit, as the triangle check traces a closed mesh) and truth[i] is
+/// the exact answer for that test. Samples are grouped by set, in bench_set_names order.
+template <class Shape>
+struct BenchCases {
+    std::vector<Shape> shapes;    ///< float shapes
+    std::vector<Sample> samples;  ///< rays with their shape and set index
+    std::vector<Truth> truth;     ///< exact answer per sample
+    bool closest_of_all = false;  ///< true: each ray is tested against all shapes
+};
+
+/// A "far" ray made from a near one: the origin moved back along the ray by 1e3 to 1e4 direction
+/// lengths (then rounded to float, so the oracle judges the moved ray), full window [0, inf).
+inline Rayf push_far(Rng& rng, Rayf r) {
+    r.org = r.org - r.dir * rng.uni(1e3f, 1e4f);
+    r.tmin = 0.0f;
+    r.tmax = std::numeric_limits<float>::infinity();
+    return r;
+}
+
+/// Triangles of the closed perturbed sphere mesh of the triangle check (closest_of_all); sets
+/// random (outside, some miss), edge, grazing, far; n rays per set.
+BenchCases<Triangle<float>> triangle_bench_cases(std::size_t n, std::uint64_t seed);
+/// The polygon check's polygons; sets random, edge, grazing, far; n rays per set.
+BenchCases<Polygon<float>> polygon_bench_cases(std::size_t n, std::uint64_t seed);
+/// The AABB check's boxes; sets random, edge, grazing, far; n rays per set.
+BenchCases<Bounds3f> aabb_bench_cases(std::size_t n, std::uint64_t seed);
+/// The OBB check's boxes; sets random, edge, grazing, far; n rays per set.
+BenchCases<Obb<float>> obb_bench_cases(std::size_t n, std::uint64_t seed);
+/// The sphere check's cases (one sphere per ray); sets random, grazing, far (far_small); n each.
+BenchCases<Sphere<float>> sphere_bench_cases(std::size_t n, std::uint64_t seed);
+/// The implicit check's tori (one per ray); sets random, grazing, far; n rays per set. The truth
+/// is the check's exact Sturm/MPFR root (relative error < 2^-110 before rounding to double).
+BenchCases<Torus<float>> torus_bench_cases(std::size_t n, std::uint64_t seed);
+/// As torus_bench_cases, for tangle cubes.
+BenchCases<TangleCube<float>> tangle_bench_cases(std::size_t n, std::uint64_t seed);
+
+}  // namespace rtlab::xcheck
