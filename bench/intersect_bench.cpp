@@ -1,79 +1,220 @@
-// Ray-triangle tests per method and precision: time per test over a fixed set of random triangles
-// and rays (the error side of these methods is `rtlab crosscheck --prim triangle`).
+// Every intersection method of intersect/ per primitive kind, precision and ray distribution
+// (random, edge-aimed, grazing, far): time per ray-primitive test, and error rates against the
+// exact answers of the cross-check's oracles (CGAL, GMP, MPFR; crosscheck/ray_sets.h). The exact
+// answers and each method's error counters are computed once, outside the timed loop.
+#include "bench/bench_cases.h"
 #include "bench/benchmarks.h"
+#include "crosscheck/accumulator.h"
+#include "crosscheck/ray_sets.h"
+#include "intersect/box/methods.h"
+#include "intersect/implicit/methods.h"
+#include "intersect/polygon/methods.h"
+#include "intersect/sphere/methods.h"
 #include "intersect/triangle/methods.h"
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
-#include <random>
+#include <map>
+#include <mutex>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace {
 
 using namespace rtlab;
+using xcheck::BenchCases;
+using xcheck::Truth;
 
-template <class T>
-struct TriangleFixture {
-    std::vector<Triangle<T>> tris;
-    std::vector<Ray<T>> rays;
+/// One method's inputs for one distribution, converted to its precision.
+template <class M>
+struct MethodInput {
+    using T = typename M::Scalar;
+    std::vector<typename M::Prepared> prepared;  ///< one per shape
+    std::vector<Ray<T>> rays;                    ///< the distribution's rays
+    std::vector<std::uint32_t> shape;            ///< shape of each ray (unused when all)
+    std::vector<Truth> truth;                    ///< exact answer of each ray
+    bool all = false;                            ///< each ray tests every shape (closest hit)
 };
 
-template <class T>
-const TriangleFixture<T>& triangle_fixture() {
-    static const TriangleFixture<T> fx = [] {
-        TriangleFixture<T> f;
-        std::mt19937_64 rng(7);
-        const auto u = [&] { return static_cast<T>(static_cast<double>(rng() >> 11) * 0x1.0p-53); };
-        for (int i = 0; i < 256; ++i) {
-            const Vec3<T> c{u(), u(), u()};
-            const auto corner = [&] { return c + Vec3<T>{u(), u(), u()} * T(0.2); };
-            f.tris.push_back({corner(), corner(), corner()});
+template <class M, class Shape>
+MethodInput<M> make_input(const BenchCases<Shape>& cases, std::uint8_t set) {
+    using T = typename M::Scalar;
+    MethodInput<M> in;
+    in.all = cases.closest_of_all;
+    in.prepared.reserve(cases.shapes.size());
+    for (const Shape& s : cases.shapes) {
+        in.prepared.push_back(M::prepare(bench::to_scalar<T>(s)));
+    }
+    for (std::size_t i = 0; i < cases.samples.size(); ++i) {
+        if (cases.samples[i].set == set) {
+            in.rays.push_back(static_cast<Ray<T>>(cases.samples[i].ray));
+            in.shape.push_back(cases.samples[i].shape);
+            in.truth.push_back(cases.truth[i]);
         }
-        for (int i = 0; i < 256; ++i) {
-            const Vec3<T> o{u() * T(2) - T(0.5), u() * T(2) - T(0.5), T(-1)};
-            const Vec3<T> target{u(), u(), u()};
-            f.rays.push_back({o, target - o});
-        }
-        return f;
-    }();
-    return fx;
+    }
+    return in;
 }
 
+/// M's answer for ray i (closest hit over all shapes when in.all; any hit for methods without
+/// t); tests counts the ray-primitive tests made.
 template <class M>
-void bm_triangle(benchmark::State& state) {
+inline Truth answer(const MethodInput<M>& in, std::size_t i, std::size_t& tests) {
     using T = typename M::Scalar;
-    const TriangleFixture<T>& fx = triangle_fixture<T>();
-    std::vector<typename M::Prepared> prepared;
-    for (const Triangle<T>& t : fx.tris) {
-        prepared.push_back(M::prepare(t));
-    }
-    std::uint64_t hits = 0;
-    for (auto _ : state) {
-        for (const Ray<T>& r : fx.rays) {
-            for (const auto& p : prepared) {
-                hits += M::occluded(p, r) ? 1u : 0u;
-            }
+    constexpr bool has_t = IntersectionMethod<M>;
+    if (!in.all) {
+        ++tests;
+        if constexpr (has_t) {
+            const auto h = M::intersect(in.prepared[in.shape[i]], in.rays[i]);
+            return h ? Truth{true, static_cast<double>(h->t)} : Truth{};
+        } else {
+            return {M::occluded(in.prepared[in.shape[i]], in.rays[i]), 0.0};
         }
     }
-    benchmark::DoNotOptimize(hits);
-    const double tests = static_cast<double>(fx.rays.size() * prepared.size());
-    // Tests per second, inverted: seconds per test (printed with an SI prefix, e.g. 19.6n).
-    state.counters["time/test"] = benchmark::Counter(
-        tests, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    Ray<T> ray = in.rays[i];
+    Truth a;
+    for (const auto& p : in.prepared) {
+        ++tests;
+        if constexpr (has_t) {
+            if (const auto h = M::intersect(p, ray)) {
+                a = {true, static_cast<double>(h->t)};
+                ray.tmax = h->t;
+            }
+        } else if (M::occluded(p, ray)) {
+            a.hit = true;
+            break;
+        }
+    }
+    return a;
+}
+
+/// The error side of one benchmark, computed on its first run.
+struct ErrorStats {
+    double rays = 0, false_hit_rate = 0, false_miss_rate = 0, max_rel = 0, median_rel = 0;
+    double tests_per_ray = 0;
+};
+
+template <class M>
+ErrorStats error_stats(const MethodInput<M>& in) {
+    xcheck::Accumulator acc(IntersectionMethod<M>);
+    std::size_t tests = 0;
+    for (std::size_t i = 0; i < in.rays.size(); ++i) {
+        const Truth a = answer(in, i, tests);
+        acc.add(a.hit, in.truth[i].hit, a.t, in.truth[i].t);
+    }
+    const xcheck::Row row = acc.row("", "", "", "", 0.0);
+    const double n = static_cast<double>(std::max<std::size_t>(1, row.rays));
+    return {static_cast<double>(row.rays),
+            static_cast<double>(row.false_hit) / n,
+            static_cast<double>(row.false_miss) / n,
+            row.max_rel_t_err,
+            row.median_rel_t_err,
+            static_cast<double>(tests) / n};
+}
+
+/// Memo of error stats by benchmark name (Google Benchmark calls a benchmark several times).
+ErrorStats memo_stats(const std::string& key, const auto& compute) {
+    static std::mutex mutex;
+    static std::map<std::string, ErrorStats> memo;
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = memo.find(key);
+    if (it != memo.end()) {
+        return it->second;
+    }
+    return memo[key] = compute();
+}
+
+template <class M, class Shape, BenchCases<Shape> (*Make)(std::size_t, std::uint64_t)>
+void bm_method(benchmark::State& state, const std::string& key, std::uint8_t set) {
+    const MethodInput<M> in = make_input<M>(bench::cached_cases<Shape, Make>(), set);
+    const ErrorStats err = memo_stats(key, [&] { return error_stats(in); });
+    std::size_t tests = 0;
+    for (auto _ : state) {
+        double sink = 0;
+        for (std::size_t i = 0; i < in.rays.size(); ++i) {
+            sink += answer(in, i, tests).t;
+        }
+        benchmark::DoNotOptimize(sink);
+    }
+    using benchmark::Counter;
+    state.SetItemsProcessed(static_cast<std::int64_t>(tests));
+    // tests * 1e-9 per second, inverted: ns per test.
+    state.counters["ns/test"] =
+        Counter(static_cast<double>(tests) * 1e-9, Counter::kIsRate | Counter::kInvert);
+    state.counters["rays"] = err.rays;
+    state.counters["tests/ray"] = err.tests_per_ray;
+    state.counters["false_hit_rate"] = err.false_hit_rate;
+    state.counters["false_miss_rate"] = err.false_miss_rate;
+    if constexpr (IntersectionMethod<M>) {  // no t for hit/no-hit methods (Segura-Feito)
+        state.counters["max_rel_t_err"] = err.max_rel;
+        state.counters["median_rel_t_err"] = err.median_rel;
+    }
+}
+
+/// Registers intersect/<prim>/<method>/<precision>/<set> for every method for_each visits
+/// (for_each(std::type_identity<T>{}, visitor)), in float and double, for the given sets.
+template <class Shape, BenchCases<Shape> (*Make)(std::size_t, std::uint64_t), class ForEach>
+void register_kind(std::string_view prim, const ForEach& for_each, bool has_edge) {
+    const auto add = [&]<class T>(std::type_identity<T> tag) {
+        for_each(tag, [&]<class M>() {
+            for (std::uint8_t set = 0; set < xcheck::bench_set_names.size(); ++set) {
+                if (set == xcheck::bench_edge && !has_edge) {
+                    continue;
+                }
+                const std::string name = "intersect/" + std::string(prim) + "/" +
+                                         std::string(M::name) + "/" +
+                                         (std::is_same_v<T, float> ? "float" : "double") + "/" +
+                                         std::string(xcheck::bench_set_names[set]);
+                auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_method<M, Shape, Make>,
+                                                       name, set);
+                b->Unit(benchmark::kMicrosecond);
+                if (bench::quick_mode()) {
+                    b->MinTime(0.01);
+                }
+            }
+        });
+    };
+    add(std::type_identity<float>{});
+    add(std::type_identity<double>{});
 }
 
 }  // namespace
 
 void rtlab::bench::register_intersect_benchmarks() {
-    const auto add = [](auto tag, const char* precision) {
-        using T = decltype(tag);
-        for_each_triangle_method<T>([&]<class M>() {
-            const std::string name = "intersect/triangle/" + std::string(M::name) + "/" + precision;
-            benchmark::RegisterBenchmark(name.c_str(), bm_triangle<M>);
-        });
-    };
-    add(float{}, "float");
-    add(double{}, "double");
+    register_kind<Triangle<float>, xcheck::triangle_bench_cases>(
+        "triangle",
+        [](auto tag, const auto& f) { for_each_triangle_method<typename decltype(tag)::type>(f); },
+        true);
+    register_kind<Polygon<float>, xcheck::polygon_bench_cases>(
+        "polygon",
+        [](auto tag, const auto& f) { for_each_polygon_method<typename decltype(tag)::type>(f); },
+        true);
+    register_kind<Bounds3f, xcheck::aabb_bench_cases>(
+        "aabb",
+        [](auto tag, const auto& f) { for_each_aabb_method<typename decltype(tag)::type>(f); },
+        true);
+    register_kind<Obb<float>, xcheck::obb_bench_cases>(
+        "obb",
+        [](auto tag, const auto& f) { for_each_obb_method<typename decltype(tag)::type>(f); },
+        true);
+    register_kind<Sphere<float>, xcheck::sphere_bench_cases>(
+        "sphere",
+        [](auto tag, const auto& f) { for_each_sphere_method<typename decltype(tag)::type>(f); },
+        false);
+    register_kind<Torus<float>, xcheck::torus_bench_cases>(
+        "torus",
+        [](auto tag, const auto& f) {
+            for_each_implicit_method<Torus, typename decltype(tag)::type>(f);
+        },
+        false);
+    register_kind<TangleCube<float>, xcheck::tangle_bench_cases>(
+        "tangle",
+        [](auto tag, const auto& f) {
+            for_each_implicit_method<TangleCube, typename decltype(tag)::type>(f);
+        },
+        false);
 }

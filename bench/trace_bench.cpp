@@ -1,62 +1,27 @@
-// Traversal benchmarks: structure x scene x ray kind, every structure tracing the same fixed rays
-// (cached per scene and kind). Counters: rays/s, and nodes/ray and prims/ray from a separate
-// counting pass so counting never perturbs the timing.
+// Traversal benchmarks trace/<structure>/<scene>/<ray kind>: every registered structure and
+// builder (brute force aside) on every benchmark scene (bench/trace_fixture.h) and ray kind, all
+// tracing the same fixed rays, with SceneTracer's threading (TBB over rays, all threads).
+// Counters: rays/s (timed loop); nodes/ray and prims/ray from a separate counting pass, so
+// counting never perturbs the timing; prims, build_ms and bytes/prim over all primitive sets of
+// the scene; sah_cost for single-set scenes only (per-set values of mixed scenes such as mount
+// are not comparable, so the counter is absent there).
 #include "accel/any_accel.h"
 #include "bench/benchmarks.h"
-#include "datasets_gen/generators.h"
-#include "trace/ray_gen.h"
-#include "trace/scene_tracer.h"
+#include "bench/trace_fixture.h"
 
 #include <benchmark/benchmark.h>
 
-#include <map>
-#include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 namespace {
 
 using namespace rtlab;
-
-constexpr std::size_t ray_count = 16384;
-
-/// A generated scene and its ray sets, built once per process.
-struct SceneFixture {
-    Scene scene;
-    std::map<RayKind, std::vector<Rayf>> rays;
-};
-
-const SceneFixture& scene_fixture(const std::string& name) {
-    static std::map<std::string, std::unique_ptr<SceneFixture>> cache;
-    auto& slot = cache[name];
-    if (!slot) {
-        slot = std::make_unique<SceneFixture>();
-        gen::GenOptions o;
-        o.size = name == "soup" ? 6 : 2;
-        o.as_mesh = name == "flake_mesh";
-        slot->scene = gen::generate(name == "soup" ? "soup" : "flake", o);
-        for (RayKind k : {RayKind::primary, RayKind::shadow, RayKind::diffuse, RayKind::random}) {
-            slot->rays[k] = make_rays(slot->scene, k, ray_count, 1);
-        }
-    }
-    return *slot;
-}
-
-const SceneTracer& tracer(const std::string& scene, const std::string& accel) {
-    static std::map<std::pair<std::string, std::string>, std::unique_ptr<SceneTracer>> cache;
-    auto& slot = cache[{scene, accel}];
-    if (!slot) {
-        TraceSetup setup;
-        setup.accel = accel;
-        slot = std::make_unique<SceneTracer>(scene_fixture(scene).scene, setup);
-    }
-    return *slot;
-}
+using namespace rtlab::bench;
 
 void bm_trace(benchmark::State& state, std::string accel, std::string scene, RayKind kind) {
-    const std::vector<Rayf>& rays = scene_fixture(scene).rays.at(kind);
-    const SceneTracer& t = tracer(scene, accel);
+    const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
+    const SceneTracer& t = bench_tracer(scene, accel);
     std::vector<Hit> hits(rays.size());
     std::vector<std::uint32_t> blockers(rays.size());
     for (auto _ : state) {
@@ -79,6 +44,16 @@ void bm_trace(benchmark::State& state, std::string accel, std::string scene, Ray
     state.counters["nodes/ray"] = static_cast<double>(st.nodes) / n;
     state.counters["prims/ray"] = static_cast<double>(st.prims) / n;
     state.counters["build_ms"] = t.build_ms();
+    state.counters["prims"] = static_cast<double>(t.primitive_count());
+    const std::vector<AccelInfo> infos = t.infos();
+    double bytes = 0;
+    for (const AccelInfo& i : infos) {
+        bytes += static_cast<double>(i.bytes);
+    }
+    state.counters["bytes/prim"] = bytes / static_cast<double>(t.primitive_count());
+    if (infos.size() == 1) {
+        state.counters["sah_cost"] = infos.front().sah_cost;
+    }
 }
 
 }  // namespace
@@ -88,15 +63,14 @@ void rtlab::bench::register_trace_benchmarks() {
         if (e.name == "brute") {
             continue;  // O(N) per ray: the reference for correctness, not a contender
         }
-        for (const char* scene : {"flake_mesh", "flake_spheres", "soup"}) {
-            for (RayKind k :
-                 {RayKind::primary, RayKind::shadow, RayKind::diffuse, RayKind::random}) {
+        for (const std::string& scene : trace_scene_names()) {
+            for (RayKind k : bench_ray_kinds) {
                 const std::string name =
                     "trace/" + std::string(e.name) + "/" + scene + "/" + std::string(to_string(k));
-                benchmark::RegisterBenchmark(name.c_str(), bm_trace, std::string(e.name),
-                                             std::string(scene), k)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
+                quick_time(benchmark::RegisterBenchmark(name.c_str(), bm_trace, std::string(e.name),
+                                                        scene, k)
+                               ->Unit(benchmark::kMillisecond)
+                               ->UseRealTime());
             }
         }
     }

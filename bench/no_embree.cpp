@@ -1,0 +1,4 @@
+// Built instead of embree_*.cpp when CMake does not find Embree 3: the baseline registers nothing.
+#include "bench/benchmarks.h"
+
+void rtlab::bench::register_embree_benchmarks() {}

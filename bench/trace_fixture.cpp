@@ -1,0 +1,163 @@
+// Benchmark scenes, ray sets and tracers, generated on first use and cached for the process.
+#include "bench/trace_fixture.h"
+
+#include "bench/benchmarks.h"
+#include "datasets_gen/generators.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+
+namespace rtlab::bench {
+
+namespace {
+
+// The scene without the objects whose material is called `material` (meshes, spheres and
+// polygons; the flake's objects are of no other type). Keeps order, camera, lights, materials.
+Scene without_material(const Scene& s, std::string_view material) {
+    const int drop = s.find_material(material);
+    Scene out;
+    out.camera = s.camera;
+    out.background = s.background;
+    out.lights = s.lights;
+    out.materials = s.materials;
+    const auto keep = [&](std::uint32_t m) {
+        return drop < 0 || m != static_cast<std::uint32_t>(drop);
+    };
+    for (const ObjectRef& r : s.order) {
+        switch (r.type) {
+        case PrimType::sphere:
+            if (keep(s.spheres[r.index].material)) {
+                out.add(s.spheres[r.index]);
+            }
+            break;
+        case PrimType::mesh:
+            if (keep(s.meshes[r.index].material)) {
+                out.add(s.meshes[r.index]);
+            }
+            break;
+        case PrimType::polygon:
+            if (keep(s.polygons[r.index].material)) {
+                out.add(s.polygons[r.index]);
+            }
+            break;
+        default:
+            throw std::invalid_argument("without_material: only spheres, meshes and polygons");
+        }
+    }
+    return out;
+}
+
+// Parses "<prefix><k>" into k; -1 when name does not start with prefix followed by digits only.
+int size_suffix(std::string_view name, std::string_view prefix) {
+    if (name.size() <= prefix.size() || name.substr(0, prefix.size()) != prefix) {
+        return -1;
+    }
+    int k = 0;
+    for (char c : name.substr(prefix.size())) {
+        if (c < '0' || c > '9') {
+            return -1;
+        }
+        k = 10 * k + (c - '0');
+    }
+    return k;
+}
+
+Scene make_bench_scene(const std::string& name) {
+    gen::GenOptions o;
+    if (const int k = size_suffix(name, "flake_mesh"); k >= 0) {
+        o.size = k;
+        o.as_mesh = true;
+        return without_material(gen::generate("flake", o), "floor");
+    }
+    if (const int k = size_suffix(name, "flake_spheres"); k >= 0) {
+        o.size = k;
+        return without_material(gen::generate("flake", o), "floor");
+    }
+    if (name == "soup") {
+        o.size = 6;
+        return gen::generate("soup", o);
+    }
+    if (name == "stadium" || name == "mount") {
+        return gen::generate(name, o);  // default sizes: 5 and 6
+    }
+    throw std::invalid_argument("unknown benchmark scene '" + name + "'");
+}
+
+}  // namespace
+
+std::size_t bench_ray_count() {
+    return quick_mode() ? 4096 : 16384;
+}
+
+const BenchScene& bench_scene(const std::string& name) {
+    static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+    auto& slot = cache[name];
+    if (!slot) {
+        auto fresh = std::make_unique<BenchScene>();
+        fresh->scene = make_bench_scene(name);
+        for (RayKind k : bench_ray_kinds) {
+            fresh->rays[k] = make_rays(fresh->scene, k, bench_ray_count(), 1);
+        }
+        slot = std::move(fresh);
+    }
+    return *slot;
+}
+
+std::vector<std::string> trace_scene_names() {
+    if (quick_mode()) {
+        // No stadium: the grid and the median kd-tree need about a second per 4096 rays there.
+        return {"flake_mesh2", "flake_spheres2", "soup", "mount"};
+    }
+    return {"flake_mesh2", "flake_mesh3", "flake_spheres2", "flake_spheres3",
+            "soup",        "stadium",     "mount"};
+}
+
+const SceneTracer& bench_tracer(const std::string& scene, const std::string& accel) {
+    static std::map<std::pair<std::string, std::string>, std::unique_ptr<SceneTracer>> cache;
+    auto& slot = cache[{scene, accel}];
+    if (!slot) {
+        TraceSetup setup;
+        setup.accel = accel;
+        slot = std::make_unique<SceneTracer>(bench_scene(scene).scene, setup);
+    }
+    return *slot;
+}
+
+std::vector<int> build_soup_sizes() {
+    if (quick_mode()) {
+        return {0, 2, 4};  // 1024 .. 16384 triangles
+    }
+    return {0, 2, 4, 6, 8, 10};  // 1024 .. 1048576 triangles
+}
+
+const Scene& build_soup(int sf) {
+    static std::map<int, std::unique_ptr<Scene>> cache;
+    auto& slot = cache[sf];
+    if (!slot) {
+        gen::GenOptions o;
+        o.size = sf;
+        slot = std::make_unique<Scene>(gen::generate("soup", o));
+    }
+    return *slot;
+}
+
+std::vector<Bounds3f> triangle_bounds(const Scene& s) {
+    std::vector<Bounds3f> out;
+    for (const MeshObject& m : s.meshes) {
+        for (const auto& t : m.mesh.triangles) {
+            Bounds3f b(m.mesh.positions[t[0]]);
+            b.extend(m.mesh.positions[t[1]]);
+            b.extend(m.mesh.positions[t[2]]);
+            out.push_back(b);
+        }
+    }
+    return out;
+}
+
+benchmark::internal::Benchmark* quick_time(benchmark::internal::Benchmark* b) {
+    return quick_mode() ? b->MinTime(0.02) : b;
+}
+
+}  // namespace rtlab::bench
