@@ -337,6 +337,48 @@ void SceneTracer::intersect(std::span<const Rayf> rays,
     add_counts(counts, stats);
 }
 
+void SceneTracer::intersect_counted(std::span<const Rayf> rays,
+                                    std::span<Hit> hits,
+                                    std::span<TraversalStats> per_ray) const {
+    if (hits.size() != rays.size() || per_ray.size() != rays.size()) {
+        throw std::invalid_argument("intersect_counted: hits, counts and rays differ in size");
+    }
+    std::fill(hits.begin(), hits.end(), Hit{});
+    for (const AnyPrimSet& set : sets_) {
+        visit_set(set, robust_, [&](const auto& s, const auto& acc, auto robust) {
+            using M = typename std::decay_t<decltype(s)>::Method;
+            if constexpr (!IntersectionMethod<M>) {
+                throw std::invalid_argument(std::string(M::name) +
+                                            " answers hit/no-hit only: trace with --any-hit");
+            } else {
+                const auto trace_range = [&](const tbb::blocked_range<std::size_t>& r, auto&) {
+                    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        Rayf ray = rays[i];
+                        ray.tmax = std::min(ray.tmax, hits[i].t);
+                        std::uint32_t best = invalid_id;
+                        PrimHit<float> best_hit{};
+                        const auto leaf = [&](std::uint32_t id, Rayf& rr) {
+                            const auto h = M::intersect(s.prims[id], rr);
+                            if (!h) {
+                                return false;
+                            }
+                            rr.tmax = h->t;
+                            best = id;
+                            best_hit = *h;
+                            return true;
+                        };
+                        TraversalStats& sink = per_ray[i];
+                        if (acc.template intersect<decltype(robust)::value>(ray, leaf, sink)) {
+                            hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.ids[best]};
+                        }
+                    }
+                };
+                parallel_rays(rays.size(), nullptr, trace_range);
+            }
+        });
+    }
+}
+
 void SceneTracer::occluded(std::span<const Rayf> rays,
                            std::span<std::uint32_t> blocker,
                            TraversalStats* stats) const {

@@ -39,6 +39,13 @@ public:
                    std::span<Hit> hits,
                    TraversalStats* stats = nullptr) const;
 
+    /// Closest hit for every ray as intersect(), also adding each ray's own traversal counts to
+    /// per_ray[i] (nodes and primitive tests over all sets; rays = 1 per set traversed). For
+    /// per-pixel heat maps; slower than intersect().
+    void intersect_counted(std::span<const Rayf> rays,
+                           std::span<Hit> hits,
+                           std::span<TraversalStats> per_ray) const;
+
     /// Any hit for every ray: blocker[i] is the global id of a primitive that blocks rays[i]'s
     /// window (whichever traversal met first), or invalid_id when nothing does.
     void occluded(std::span<const Rayf> rays,

@@ -1,0 +1,299 @@
+// rtlab render: the Whitted renderer on any registered structure. Writes a PNG or EXR image
+// (complete or not at all), prints ray statistics on stderr, optionally a JSON file of them, and
+// with --explain the scene's features and the integrator instance that runs.
+#include "apps/args.h"
+#include "apps/commands.h"
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "render/renderer.h"
+#include "scene/scene_io.h"
+#include "trace/scene_tracer.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <unistd.h>
+
+namespace rtlab::app {
+
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    std::string output;
+    std::string accel = "bvh:binned";
+    std::string method;
+    int width = 0;
+    int height = 0;
+    int spp = 1;
+    int max_depth = 5;
+    std::string fresnel = "exact";
+    bool spectral = false;
+    bool no_spectral = false;
+    int wavelengths = 8;
+    std::string offset = "ulp";
+    float epsilon = default_offset_epsilon;
+    std::string aov = "color";
+    int threads = 0;
+    std::string stats_json;
+    bool spd = false;
+    bool explain = false;
+    bool all_features = false;
+    bool robust = false;
+    CLI::Option* width_opt = nullptr;
+    CLI::Option* height_opt = nullptr;
+    CLI::Option* depth_opt = nullptr;
+};
+
+// A one-line progress bar with ETA on stderr, redrawn at most ten times a second.
+class ProgressBar {
+public:
+    void update(std::size_t done, std::size_t total) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        const auto now = std::chrono::steady_clock::now();
+        if (done < total && now - last_ < std::chrono::milliseconds(100)) {
+            return;
+        }
+        last_ = now;
+        const double frac = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1;
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const double eta = frac > 0 ? elapsed * (1 - frac) / frac : 0;
+        constexpr int cells = 30;
+        const int filled = static_cast<int>(frac * cells);
+        std::string bar(static_cast<std::size_t>(filled), '#');
+        bar.resize(cells, '.');
+        std::fprintf(stderr, "\rrender [%s] %3d%%  ETA %5.1f s ", bar.c_str(),
+                     static_cast<int>(frac * 100), eta);
+        if (done == total) {
+            std::fprintf(stderr, "\r%60s\r", "");
+        }
+        std::fflush(stderr);
+    }
+
+private:
+    std::mutex mutex_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    std::chrono::steady_clock::time_point last_{};
+};
+
+void print_explain(const std::string& scene, const RenderPlan& p) {
+    std::cout << "features of " << scene << ":\n";
+    for (const FeatureReason& r : p.reasons) {
+        std::cout << "  " << r.name << std::string(r.name.size() < 11 ? 11 - r.name.size() : 1, ' ')
+                  << (r.enabled ? "enabled   " : "disabled  ") << r.why << "\n";
+    }
+    std::cout << "spectral:      " << (p.spectral ? "on" : "off") << "\n";
+    std::cout << "instantiation: " << p.instantiation << "\n";
+}
+
+int run_render(const RenderArgs& a) {
+    if (a.output.empty() && !a.explain) {
+        throw Error("render: -o OUT is required (or --explain alone)");
+    }
+    if (a.spectral && a.no_spectral) {
+        throw Error("render: --spectral and --no-spectral contradict each other");
+    }
+    if (!a.output.empty()) {
+        const std::filesystem::path out(a.output);
+        if (!is_supported_image(out)) {
+            throw Error(a.output + ": unsupported image extension '" + out.extension().string() +
+                        "' (use .png or .exr)");
+        }
+        const std::filesystem::path dir =
+            out.parent_path().empty() ? std::filesystem::path(".") : out.parent_path();
+        if (!std::filesystem::is_directory(dir)) {
+            throw Error(a.output + ": directory " + dir.string() + " does not exist");
+        }
+    }
+    std::optional<tbb::global_control> threads;
+    if (a.threads > 0) {
+        threads.emplace(tbb::global_control::max_allowed_parallelism,
+                        static_cast<std::size_t>(a.threads));
+    }
+
+    RenderSettings rs;
+    rs.width = a.width;
+    rs.height = a.height;
+    rs.spp = a.spp;
+    rs.max_depth = a.max_depth;
+    rs.fresnel = parse_fresnel(a.fresnel);
+    if (a.spectral || a.no_spectral) {
+        rs.spectral = a.spectral;
+    }
+    rs.wavelengths = a.wavelengths;
+    rs.offset = parse_offset_policy(a.offset);
+    rs.epsilon = a.epsilon;
+    rs.aov = parse_aov(a.aov);
+    rs.spd = a.spd;
+    rs.all_features = a.all_features;
+    if (a.spd) {
+        // The SPD rules: 512 x 512 and depth 5 unless the user says otherwise.
+        rs.width = a.width_opt->count() > 0 ? a.width : 512;
+        rs.height = a.height_opt->count() > 0 ? a.height : 512;
+        rs.max_depth = a.depth_opt->count() > 0 ? a.max_depth : 5;
+    }
+
+    const Scene scene = load_scene(a.scene);
+    const RenderPlan plan = plan_render(scene, rs);
+    if (a.explain) {
+        print_explain(a.scene, plan);
+        if (a.output.empty()) {
+            return 0;
+        }
+    }
+    TraceSetup setup;
+    setup.accel = a.accel;
+    setup.methods = split_commas(a.method);
+    setup.robust = a.robust;
+    const SceneTracer tracer(scene, setup);
+
+    ProgressBar bar;
+    if (isatty(2) != 0) {
+        rs.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+    }
+    RenderResult res = render(scene, tracer, rs);
+    Image shown = res.image;
+    std::string ext = std::filesystem::path(a.output).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (rs.aov == Aov::depth && ext == ".png") {
+        // PNG holds [0, 1]: scale so the farthest hit is white (EXR keeps the distances).
+        float far = 0;
+        for (const Vec3f& p : shown.pixels) {
+            far = std::max(far, p.x);
+        }
+        for (Vec3f& p : shown.pixels) {
+            p = far > 0 ? p / far : p;
+        }
+    }
+    write_image(shown, a.output, rs.aov == Aov::color);
+
+    const RenderStats& st = res.stats;
+    const double mrays =
+        st.render_ms > 0 ? static_cast<double>(st.total()) / (st.render_ms * 1e3) : 0.0;
+    std::ostringstream msg;
+    msg << "rays: eye " << st.eye << ", shadow " << st.shadow << ", reflected " << st.reflected
+        << ", refracted " << st.refracted << ", total " << st.total() << " (" << mrays
+        << " Mrays/s); hits " << st.hits << "; render " << st.render_ms << " ms, build "
+        << st.build_ms << " ms; " << res.image.width << "x" << res.image.height << " -> "
+        << a.output << "\n";
+    if (rs.aov == Aov::heatmap) {
+        msg << "heatmap: nodes + primitive tests per pixel from " << st.heat_min << " (blue) to "
+            << st.heat_max << " (red)\n";
+    }
+    std::cerr << msg.str();
+
+    if (!a.stats_json.empty()) {
+        nlohmann::json j;
+        j["scene"] = a.scene;
+        j["output"] = a.output;
+        j["accel"] = a.accel;
+        j["sets"] = tracer.set_methods();
+        j["width"] = res.image.width;
+        j["height"] = res.image.height;
+        j["spp"] = rs.spd ? 4 : rs.spp;
+        j["spd"] = rs.spd;
+        j["max_depth"] = rs.max_depth;
+        j["aov"] = to_string(rs.aov);
+        j["fresnel"] = fresnel_name(rs.fresnel);
+        j["spectral"] = plan.spectral;
+        j["offset"] = to_string(rs.offset);
+        j["epsilon"] = rs.epsilon;
+        j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+        j["features"] = feature_names(plan.features);
+        j["instantiation"] = plan.instantiation;
+        j["rays"] = {{"eye", st.eye},
+                     {"shadow", st.shadow},
+                     {"reflected", st.reflected},
+                     {"refracted", st.refracted},
+                     {"total", st.total()}};
+        j["hits"] = st.hits;
+        j["render_ms"] = st.render_ms;
+        j["build_ms"] = st.build_ms;
+        j["mrays_per_s"] = mrays;
+        if (rs.aov == Aov::heatmap) {
+            j["heatmap"] = {{"min", st.heat_min}, {"max", st.heat_max}};
+        }
+        write_file_atomically(a.stats_json, j.dump(2) + "\n");
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_render(CLI::App& root) {
+    auto a = std::make_shared<RenderArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "render",
+        "Render a scene with the Whitted ray tracer (Phong, shadows, reflection, refraction, "
+        "Fresnel, Beer-Lambert, dispersion, checker textures) on any structure; statistics on "
+        "stderr");
+    sub->add_option("scene", a->scene, "Scene JSON or mesh file (.obj .ply .off .stl)")->required();
+    sub->add_option("-o,--output", a->output,
+                    "Output image: .png (8-bit sRGB) or .exr (linear float); written completely "
+                    "or not at all");
+    sub->add_option("--accel", a->accel, "Structure (see rtlab list; default bvh:binned)");
+    sub->add_option("--method", a->method,
+                    "Intersection method(s), comma-separated, one per primitive family "
+                    "(implicit: closed_form, newton, laguerre; see rtlab list)");
+    a->width_opt = sub->add_option("--width", a->width, "Image width (default: the camera's)")
+                       ->check(CLI::Range(1, 16384));
+    a->height_opt = sub->add_option("--height", a->height, "Image height (default: the camera's)")
+                        ->check(CLI::Range(1, 16384));
+    sub->add_option("--spp", a->spp, "Samples per pixel, fixed Hammersley points (default 1)")
+        ->check(CLI::Range(1, 4096));
+    a->depth_opt =
+        sub->add_option("--max-depth", a->max_depth,
+                        "Deepest reflection/refraction ray; eye rays are depth 0 (default 5)")
+            ->check(CLI::Range(0, 64));
+    sub->add_option("--fresnel", a->fresnel,
+                    "Fresnel term for materials with fresnel: exact (unpolarised) or schlick")
+        ->check(CLI::IsMember({"exact", "schlick"}));
+    sub->add_flag("--spectral", a->spectral,
+                  "Spectral mode: trace each wavelength with its Cauchy index (default: on exactly "
+                  "when a material has dispersion)");
+    sub->add_flag("--no-spectral", a->no_spectral, "RGB mode even when materials disperse");
+    sub->add_option("--wavelengths", a->wavelengths,
+                    "Wavelengths per eye ray in spectral mode "
+                    "(default 8)")
+        ->check(CLI::Range(1, 256));
+    sub->add_option("--offset", a->offset,
+                    "How secondary rays leave surfaces: none, epsilon (fixed --epsilon) or ulp "
+                    "(Waechter & Binder, default)")
+        ->check(CLI::IsMember({"none", "epsilon", "ulp"}));
+    sub->add_option("--epsilon", a->epsilon, "World-space offset for --offset epsilon (1e-4)")
+        ->check(CLI::Range(0.0f, 1e6f));
+    sub->add_option(
+           "--aov", a->aov,
+           "What to write: color, depth (hit distance; in PNG scaled so the farthest hit is "
+           "white), normal (0.5 n + 0.5) or heatmap (nodes + primitive tests of the eye "
+           "rays per pixel, blue = min to red = max, legend bar at the bottom)")
+        ->check(CLI::IsMember({"color", "depth", "normal", "heatmap"}));
+    sub->add_option("--threads", a->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    sub->add_option("--stats-json", a->stats_json, "Also write the statistics as JSON to FILE");
+    sub->add_flag("--spd", a->spd,
+                  "SPD mode: 512x512 from rays through the 513x513 pixel corners (each pixel the "
+                  "mean of its 4 corners), max depth 5");
+    sub->add_flag("--explain", a->explain,
+                  "Print each feature (enabled or not, and why) and the integrator instance; "
+                  "renders too when -o is given");
+    sub->add_flag("--all-features", a->all_features,
+                  "Run the integrator with every feature compiled in (for comparisons)");
+    sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
+    return {sub, [a] { return run_render(*a); }};
+}
+
+}  // namespace rtlab::app
