@@ -36,7 +36,13 @@ Command add_list(CLI::App& root);
 /// mesh.
 Command add_gen(CLI::App& root);
 
+/// `rtlab render`: the Whitted ray tracer, writes a PNG or EXR image.
+Command add_render(CLI::App& root);
+
 /// `rtlab info`: counts, bounds, mesh statistics and features of a scene or mesh file.
 Command add_info(CLI::App& root);
+
+/// `rtlab stability`: the numerical-stability suite and its report.
+Command add_stability(CLI::App& root);
 
 }  // namespace rtlab::app

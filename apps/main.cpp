@@ -26,9 +26,11 @@ int main(int argc, char** argv) {
                                            ")");
 
     const std::vector<rtlab::app::Command> commands{
-        rtlab::app::add_crosscheck(root), rtlab::app::add_rays(root), rtlab::app::add_trace(root),
-        rtlab::app::add_compare(root),    rtlab::app::add_list(root), rtlab::app::add_info(root),
-        rtlab::app::add_gen(root),
+        rtlab::app::add_crosscheck(root), rtlab::app::add_rays(root),
+        rtlab::app::add_trace(root),      rtlab::app::add_compare(root),
+        rtlab::app::add_list(root),       rtlab::app::add_info(root),
+        rtlab::app::add_gen(root),        rtlab::app::add_stability(root),
+        rtlab::app::add_render(root),
     };
 
     try {

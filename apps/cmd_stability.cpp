@@ -1,0 +1,151 @@
+// rtlab stability: runs the numerical-stability suite (stability/) and writes its report as
+// markdown (docs/stability.md) and/or JSON; --fixture writes the watertightness scene and rays
+// so `rtlab trace` can be checked on them.
+#include "apps/args.h"
+#include "apps/commands.h"
+#include "mesh/error.h"
+#include "mesh/mesh_io.h"
+#include "stability/fixtures.h"
+#include "stability/report.h"
+#include "stability/stability.h"
+#include "trace/binary_io.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace rtlab::app {
+
+namespace {
+
+struct StabilityArgs {
+    std::string cases;
+    std::size_t rays = 10000;
+    std::uint64_t seed = 1;
+    std::string markdown;
+    std::string json;
+    std::string fixture;
+    bool list = false;
+};
+
+int run_stability(const StabilityArgs& a) {
+    if (a.list) {
+        for (const stab::Case& c : stab::cases()) {
+            std::cout << fmt::format("{:<14} {}\n", c.name, c.description);
+        }
+        return 0;
+    }
+    stab::Options opt;
+    opt.rays = a.rays;
+    opt.seed = a.seed;
+    if (!a.fixture.empty()) {
+        const std::filesystem::path dir(a.fixture);
+        std::filesystem::create_directories(dir);
+        const TriangleMesh mesh = stab::watertight_sphere(opt.seed);
+        save_mesh(mesh, dir / "sphere.ply");
+        save_rays(dir / "inside.rays", stab::inside_rays(mesh, opt.rays, opt.seed));
+        std::cerr << fmt::format(
+            "rtlab stability: wrote {} (closed perturbed sphere, {} triangles) and {} ({} rays "
+            "from inside; every one must hit)\n",
+            (dir / "sphere.ply").string(), mesh.triangle_count(), (dir / "inside.rays").string(),
+            opt.rays);
+        return 0;
+    }
+
+    std::vector<const stab::Case*> selected;
+    if (a.cases.empty()) {
+        for (const stab::Case& c : stab::cases()) {
+            selected.push_back(&c);
+        }
+    } else {
+        for (const std::string& name : split_commas(a.cases)) {
+            const stab::Case* c = stab::find_case(name);
+            if (c == nullptr) {
+                std::string known;
+                for (const stab::Case& k : stab::cases()) {
+                    known += (known.empty() ? "" : ", ") + std::string(k.name);
+                }
+                throw Error("unknown stability case '" + name + "' (known: " + known + ")");
+            }
+            selected.push_back(c);
+        }
+    }
+
+    stab::ReportHeader header;
+    header.command = fmt::format("rtlab stability --rays {} --seed {}", opt.rays, opt.seed);
+    if (!a.cases.empty()) {
+        header.command += " --case " + a.cases;
+    }
+    const char* rev = std::getenv("RTLAB_GIT_REVISION");
+    header.revision = rev != nullptr && *rev != '\0' ? rev : "unknown";
+    header.compiler = stab::compiler_description();
+    header.cpu = stab::cpu_description();
+    header.options = opt;
+
+    std::vector<stab::CaseResult> results;
+    std::size_t total_failures = 0;
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        const stab::Case& c = *selected[i];
+        std::cerr << fmt::format("rtlab stability: [{}/{}] {} ...\n", i + 1, selected.size(),
+                                 c.name);
+        const auto t0 = std::chrono::steady_clock::now();
+        stab::CaseResult r;
+        r.name = std::string(c.name);
+        r.description = std::string(c.description);
+        r.rows = c.run(opt);
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::size_t failures = 0;
+        for (const stab::Row& row : r.rows) {
+            failures += row.failures;
+        }
+        total_failures += failures;
+        std::cerr << fmt::format("rtlab stability: [{}/{}] {}: {} rows, {} failures, {:.1f} s\n",
+                                 i + 1, selected.size(), c.name, r.rows.size(), failures,
+                                 r.seconds);
+        results.push_back(std::move(r));
+    }
+
+    const std::string md = stab::to_markdown(header, results);
+    if (!a.markdown.empty()) {
+        stab::write_report(a.markdown, md);
+    }
+    if (!a.json.empty()) {
+        stab::write_report(a.json, stab::to_json(header, results));
+    }
+    if (a.markdown.empty() && a.json.empty()) {
+        std::cout << md;
+    }
+    std::cerr << fmt::format("rtlab stability: {} cases, {} failures recorded{}{}\n",
+                             results.size(), total_failures,
+                             a.markdown.empty() ? "" : ", markdown: " + a.markdown,
+                             a.json.empty() ? "" : ", json: " + a.json);
+    return 0;
+}
+
+}  // namespace
+
+Command add_stability(CLI::App& root) {
+    auto a = std::make_shared<StabilityArgs>();
+    CLI::App* sub = root.add_subcommand(
+        "stability",
+        "Run the numerical-stability suite (leaks, degenerate and grazing rays, far and small "
+        "geometry, self-intersection, ...) and write the report (docs/stability.md)");
+    sub->add_option("--case", a->cases, "Cases to run, comma-separated (default: all; see --list)");
+    sub->add_option("--rays", a->rays, "Rays per subject and precision (default 10000)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+    sub->add_option("--seed", a->seed, "Seed of shapes and rays (default 1)");
+    sub->add_option("--markdown", a->markdown, "Write the report as markdown to this file");
+    sub->add_option("--json", a->json, "Write the report as JSON to this file");
+    sub->add_flag("--list", a->list, "List the cases and exit");
+    sub->add_option("--fixture", a->fixture,
+                    "Write the watertightness fixture to this folder instead of running: "
+                    "sphere.ply (closed perturbed sphere) and inside.rays (--rays rays from "
+                    "inside, all must hit)");
+    return {sub, [a] { return run_stability(*a); }};
+}
+
+}  // namespace rtlab::app

@@ -1,0 +1,183 @@
+#pragma once
+// What the stability cases share: a stopwatch, relative-error statistics, row assembly, a seeded
+// generator, a one-thread scope for ns/ray figures, and tracing a whole batch through SceneTracer
+// with any triangle method (occlusion-only methods answer through any-hit).
+
+#include "intersect/triangle/methods.h"
+#include "mesh/triangle_mesh.h"
+#include "stability/stability.h"
+#include "trace/scene_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace rtlab::stab {
+
+/// Wall-clock time since construction.
+class Stopwatch {
+public:
+    /// Elapsed nanoseconds.
+    double ns() const {
+        return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start_)
+            .count();
+    }
+
+private:
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+/// Relative errors |t - ref| / max(|ref|, DBL_MIN), reduced to the max and median of a Row.
+class ErrorStats {
+public:
+    /// Record one pair of t values.
+    void add(double t, double ref) {
+        const double denom = std::max(std::abs(ref), std::numeric_limits<double>::min());
+        errs_.push_back(std::abs(t - ref) / denom);
+    }
+    /// Writes max and median into row (leaves NaN when nothing was recorded).
+    void fill(Row& row) const {
+        if (errs_.empty()) {
+            return;
+        }
+        std::vector<double> e = errs_;
+        const auto mid = e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2);
+        std::nth_element(e.begin(), mid, e.end());
+        row.median_rel_t_err = *mid;
+        row.max_rel_t_err = *std::max_element(e.begin(), e.end());
+    }
+
+private:
+    std::vector<double> errs_;
+};
+
+/// A row with the counting fields filled.
+inline Row make_row(std::string case_name,
+                    std::string subject,
+                    std::string precision,
+                    std::size_t rays,
+                    std::size_t failures,
+                    std::string failure_kind,
+                    double ns_per_ray,
+                    std::string note = {}) {
+    Row r;
+    r.case_name = std::move(case_name);
+    r.subject = std::move(subject);
+    r.precision = std::move(precision);
+    r.rays = rays;
+    r.failures = failures;
+    r.failure_kind = std::move(failure_kind);
+    r.ns_per_ray = ns_per_ray;
+    r.note = std::move(note);
+    return r;
+}
+
+/// Seeded numbers with our own bit mapping, so sets are the same on every standard library.
+class Sampler {
+public:
+    /// Same seed (and stream), same sequence.
+    explicit Sampler(std::uint64_t seed, std::uint64_t stream = 0)
+        : rng_(seed * 0x9E3779B97F4A7C15ull + stream + 1) {}
+    /// Uniform in [lo, hi).
+    double uniform(double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(rng_() >> 11) * 0x1.0p-53;
+    }
+    /// Index in [0, n).
+    std::size_t index(std::size_t n) { return static_cast<std::size_t>(rng_() % n); }
+    /// Uniform unit vector (rejection from the cube).
+    Vec3d unit() {
+        for (;;) {
+            const Vec3d p{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+            const double l2 = length_squared(p);
+            if (l2 > 1e-4 && l2 <= 1) {
+                return p / std::sqrt(l2);
+            }
+        }
+    }
+    /// Uniform point in the ball of radius r around the origin.
+    Vec3d ball(double r) { return unit() * (r * std::cbrt(uniform(0, 1))); }
+
+private:
+    std::mt19937_64 rng_;
+};
+
+/// "name robust" or "name plain".
+inline std::string robust_label(bool robust) {
+    return robust ? "robust" : "plain";
+}
+
+/// Traces every ray through tracer: closest hit, or any hit (t = 0 on a hit) when
+/// `occlusion_only`. Returns one Hit per ray (miss: prim == invalid_id).
+inline std::vector<Hit> trace_all(const SceneTracer& tracer,
+                                  const std::vector<Rayf>& rays,
+                                  bool occlusion_only,
+                                  TraversalStats* stats = nullptr) {
+    std::vector<Hit> hits(rays.size());
+    if (occlusion_only) {
+        std::vector<std::uint32_t> blockers(rays.size());
+        tracer.occluded(rays, blockers, stats);
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            hits[i] = blockers[i] == invalid_id ? Hit{} : Hit{0.0f, 0.0f, 0.0f, blockers[i]};
+        }
+    } else {
+        tracer.intersect(rays, hits, stats);
+    }
+    return hits;
+}
+
+/// True for the triangle methods that answer hit/no-hit only.
+inline bool is_occlusion_only(std::string_view method) {
+    return method == "segura_feito";
+}
+
+/// Rays that no triangle of `mesh` stops when each is tested by triangle method `method` (float)
+/// directly, without boxes or a structure: the method's own leaks, which every structure shares.
+inline std::size_t method_leaks(const TriangleMesh& mesh,
+                                const std::vector<Rayf>& rays,
+                                std::string_view method) {
+    std::size_t leaks = 0;
+    for_each_triangle_method<float>([&]<class M>() {
+        if (M::name != method) {
+            return;
+        }
+        std::vector<typename M::Prepared> prims;
+        for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+            const auto c = mesh.corners(i);
+            prims.push_back(M::prepare({c[0], c[1], c[2]}));
+        }
+        for (const Rayf& r : rays) {
+            bool hit = false;
+            for (const auto& p : prims) {
+                if (M::occluded(p, r)) {
+                    hit = true;
+                    break;
+                }
+            }
+            leaks += hit ? 0 : 1;
+        }
+    });
+    return leaks;
+}
+
+/// The note of a leak row: how many leaks the method makes by itself and what the traversal adds.
+inline std::string leak_note(std::size_t leaks, std::size_t own, bool robust) {
+    if (leaks == 0) {
+        return {};
+    }
+    std::string note = "the method alone (box-free loop) leaks " + std::to_string(own) +
+                       (own > 0 ? " (rounding at shared edges and vertices)" : "");
+    if (leaks > own) {
+        note += "; traversal adds " + std::to_string(leaks - own) +
+                (robust ? ": robust traversal lost rays (a bug)"
+                        : ": the plain slab test rounds a box the exact ray touches to a miss "
+                          "(robust traversal pads it)");
+    }
+    return note;
+}
+
+}  // namespace rtlab::stab

@@ -1,0 +1,417 @@
+// Self-intersection of secondary rays: from a hit point on a triangle or a sphere (coordinates and
+// sizes log-uniform in 1e-8 .. 1e8), a reflected ray and a shadow ray towards a random point on
+// the outside must not hit the surface they leave, for each offset policy of trace/offset.h
+// (none, epsilon = default_offset_epsilon, ulp = Wächter & Binder 2019). Named sub-case: the sphere
+// flake's tangent contacts (child on parent, root on floor) of gen::generate("flake").
+#include "datasets_gen/generators.h"
+#include "datasets_gen/sphere_flake.h"
+#include "intersect/sphere/methods.h"
+#include "intersect/triangle/methods.h"
+#include "stability/cases.h"
+#include "stability/exact_judge.h"
+#include "trace/offset.h"
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace rtlab::stab {
+
+namespace {
+
+constexpr std::array<OffsetPolicy, 3> policies{OffsetPolicy::none, OffsetPolicy::epsilon,
+                                               OffsetPolicy::ulp};
+
+/// Where the secondary rays of one sample start: the primary hit point, the unit normal on the
+/// side the primary came from (the outside), the reflected direction and a shadow target on the
+/// outside. `stratum` is 0 when 1 <= |c| / size <= 1e4 (c: the shape's centre, size: triangle
+/// size or sphere radius), else 1.
+template <class T>
+struct Start {
+    std::uint32_t shape = 0;
+    Vec3<T> p, n, reflect, target;
+    int stratum = 0;
+};
+
+/// A unit vector in the hemisphere around n (n unit).
+Vec3d hemisphere(Sampler& rng, const Vec3d& n) {
+    const Vec3d u = rng.unit();
+    return dot(u, n) < 0 ? u - n * (2 * dot(u, n)) : u;
+}
+
+/// True when both secondary directions leave the surface decisively (cosine with the normal at
+/// least 1e-2): otherwise rounding of the direction or of the shadow target alone could send the
+/// ray back through the surface, which would not be a self-intersection.
+template <class T>
+bool decisive(const Start<T>& s) {
+    const Vec3d n(s.n);
+    return dot(normalize(Vec3d(s.reflect)), n) >= 1e-2 &&
+           dot(normalize(Vec3d(s.target) - Vec3d(s.p)), n) >= 1e-2;
+}
+
+/// Secondary rays of the start in precision T under a policy: the reflected ray ([0, inf)) and the
+/// shadow ray to the target ([0, 1]).
+template <class T>
+std::array<Ray<T>, 2> secondaries(const Start<T>& s, OffsetPolicy policy) {
+    const Vec3<T> o = offset_origin(s.p, s.n, policy, static_cast<T>(default_offset_epsilon));
+    return {Ray<T>{o, s.reflect}, Ray<T>{o, s.target - o, T(0), T(1)}};
+}
+
+/// One row per policy: re-intersections of the starting surface (self_hit(shape, ray)), split
+/// into reflection and shadow rays and by stratum in the note; `stratified` adds a row per policy
+/// for stratum 0 alone ("1<=|c|/size<=1e4").
+template <class T, class SelfHit>
+void policy_rows(const std::vector<Start<T>>& starts,
+                 const SelfHit& self_hit,
+                 const std::string& case_name,
+                 const std::string& label,
+                 const std::string& extra_note,
+                 bool stratified,
+                 std::vector<Row>& rows) {
+    for (OffsetPolicy policy : policies) {
+        std::array<std::size_t, 2> n_stratum{}, fail_stratum{};
+        std::size_t fail_reflect = 0, fail_shadow = 0;
+        const Stopwatch sw;
+        for (const Start<T>& s : starts) {
+            const std::array<Ray<T>, 2> rays = secondaries(s, policy);
+            const bool r = self_hit(s.shape, rays[0]);
+            const bool sh = self_hit(s.shape, rays[1]);
+            fail_reflect += r ? 1 : 0;
+            fail_shadow += sh ? 1 : 0;
+            const auto k = static_cast<std::size_t>(s.stratum);
+            n_stratum[k] += 2;
+            fail_stratum[k] += (r ? 1 : 0) + (sh ? 1 : 0);
+        }
+        const std::size_t rays = 2 * starts.size();
+        const double ns = rays ? sw.ns() / static_cast<double>(rays) : 0.0;
+        std::string note = "reflection " + std::to_string(fail_reflect) + ", shadow " +
+                           std::to_string(fail_shadow);
+        if (stratified) {
+            note += "; 1<=|c|/size<=1e4: " + std::to_string(fail_stratum[0]) + " of " +
+                    std::to_string(n_stratum[0]) + ", beyond: " + std::to_string(fail_stratum[1]) +
+                    " of " + std::to_string(n_stratum[1]);
+        }
+        if (policy == OffsetPolicy::epsilon) {
+            note += "; epsilon " + std::to_string(default_offset_epsilon);
+        }
+        if (!extra_note.empty()) {
+            note += "; " + extra_note;
+        }
+        const std::string subject = std::string(to_string(policy)) + " " + label;
+        rows.push_back(make_row(case_name, subject, precision_of<T>(), rays,
+                                fail_reflect + fail_shadow, "re-intersections", ns, note));
+        if (stratified) {
+            rows.push_back(make_row(
+                case_name, subject + " 1<=|c|/size<=1e4", precision_of<T>(), n_stratum[0],
+                fail_stratum[0], "re-intersections", ns,
+                "the rows' stratum of shapes between 1e-4 |c| and |c| in size (c: centre)"));
+        }
+    }
+}
+
+/// log-uniform magnitude in [1e-8, 1e8].
+double log_uniform(Sampler& rng) {
+    return std::pow(10.0, rng.uniform(-8, 8));
+}
+
+/// Random triangles: centre = unit * |c|, vertices centre + unit * size, |c| and size log-uniform
+/// in [1e-8, 1e8], rounded to T; the primary ray comes from 3 sizes away towards a random interior
+/// point. Per triangle intersector M: rows per policy.
+template <class T>
+void triangle_rows(const Options& opt, std::vector<Row>& rows) {
+    Sampler rng(opt.seed, std::is_same_v<T, float> ? 500 : 600);
+    std::vector<Triangle<T>> tris;
+    std::vector<Ray<T>> primaries;
+    std::vector<int> strata;
+    std::vector<Vec3d> shadow_dirs;
+    std::vector<double> shadow_len;
+    std::size_t degenerate = 0;
+    while (tris.size() < opt.rays) {
+        const Vec3d c = rng.unit() * log_uniform(rng);
+        const double size = log_uniform(rng);
+        const Triangle<T> tri{Vec3<T>(c + rng.unit() * size), Vec3<T>(c + rng.unit() * size),
+                              Vec3<T>(c + rng.unit() * size)};
+        if (is_degenerate(tri.p0, tri.p1, tri.p2)) {
+            ++degenerate;  // collapsed by rounding to T: no surface to leave
+            continue;
+        }
+        double b1 = rng.uniform(0, 1), b2 = rng.uniform(0, 1);
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
+        const Vec3d p0(tri.p0), p1(tri.p1), p2(tri.p2);
+        const Vec3d aim = p0 + (p1 - p0) * b1 + (p2 - p0) * b2;
+        const Vec3d org = aim + rng.unit() * (3 * size);
+        tris.push_back(tri);
+        primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
+        strata.push_back(size <= length(c) && length(c) <= 1e4 * size ? 0 : 1);
+        shadow_dirs.push_back(rng.unit());
+        shadow_len.push_back(size * std::pow(10.0, rng.uniform(-1, 1)));
+    }
+    for_each_triangle_intersector<T>([&]<class M>() {
+        for (const bool bary : {false, true}) {
+            std::vector<typename M::Prepared> prep;
+            std::vector<Start<T>> starts;
+            std::size_t missed = 0, grazing = 0;
+            for (std::size_t i = 0; i < tris.size(); ++i) {
+                prep.push_back(M::prepare(tris[i]));
+                const auto hit = M::intersect(prep.back(), primaries[i]);
+                if (!hit) {
+                    ++missed;
+                    continue;
+                }
+                Start<T> s;
+                s.shape = static_cast<std::uint32_t>(i);
+                // The renderer's hit point o + t d (trace/surface.cpp), or the barycentric point
+                // Wächter & Binder assume (its error is relative to the vertices, not the ray
+                // length).
+                s.p = bary ? tris[i].p0 * (T(1) - hit->u - hit->v) + tris[i].p1 * hit->u +
+                                 tris[i].p2 * hit->v
+                           : primaries[i].at(hit->t);
+                s.n = normalize(cross(tris[i].p1 - tris[i].p0, tris[i].p2 - tris[i].p0));
+                if (dot(s.n, primaries[i].dir) > T(0)) {
+                    s.n = -s.n;
+                }
+                const Vec3<T>& d = primaries[i].dir;
+                s.reflect = d - s.n * (T(2) * dot(d, s.n));
+                const Vec3d nd(s.n);
+                const Vec3d sd = dot(shadow_dirs[i], nd) < 0
+                                     ? shadow_dirs[i] - nd * (2 * dot(shadow_dirs[i], nd))
+                                     : shadow_dirs[i];
+                s.target = Vec3<T>(Vec3d(s.p) + sd * shadow_len[i]);
+                s.stratum = strata[i];
+                if (!decisive(s)) {
+                    ++grazing;
+                    continue;
+                }
+                starts.push_back(s);
+            }
+            const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
+                return M::occluded(prep[shape], ray);
+            };
+            policy_rows<T>(starts, self_hit, "self_intersection/triangles",
+                           std::string(M::name) + (bary ? " p=barycentric" : " p=o+td"),
+                           std::to_string(missed) + " primary misses, " + std::to_string(grazing) +
+                               " grazing starts and " + std::to_string(degenerate) +
+                               " triangles collapsed by rounding skipped",
+                           true, rows);
+        }
+    });
+}
+
+/// Random spheres: centre = unit * |c|, radius r, both log-uniform in [1e-8, 1e8], rounded to T;
+/// primary rays from 3 r away towards a point within 0.9 r of the centre.
+template <class T>
+void sphere_rows(const Options& opt, std::vector<Row>& rows) {
+    Sampler rng(opt.seed, std::is_same_v<T, float> ? 510 : 610);
+    std::vector<Sphere<T>> spheres;
+    std::vector<Ray<T>> primaries;
+    std::vector<int> strata;
+    std::vector<Vec3d> shadow_dirs;
+    std::vector<double> shadow_len;
+    for (std::size_t i = 0; i < opt.rays; ++i) {
+        const Vec3d c = rng.unit() * log_uniform(rng);
+        const double r = log_uniform(rng);
+        const Vec3d aim = c + rng.ball(0.9 * r);
+        const Vec3d org = c + rng.unit() * (3 * r);
+        spheres.push_back({Vec3<T>(c), static_cast<T>(r)});
+        primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
+        strata.push_back(r <= length(c) && length(c) <= 1e4 * r ? 0 : 1);
+        shadow_dirs.push_back(rng.unit());
+        shadow_len.push_back(r * std::pow(10.0, rng.uniform(-1, 1)));
+    }
+    for_each_sphere_method<T>([&]<class M>() {
+        std::vector<typename M::Prepared> prep;
+        std::vector<Start<T>> starts;
+        std::size_t missed = 0, grazing = 0;
+        for (std::size_t i = 0; i < spheres.size(); ++i) {
+            prep.push_back(M::prepare(spheres[i]));
+            const auto hit = M::intersect(prep.back(), primaries[i]);
+            if (!hit) {
+                ++missed;
+                continue;
+            }
+            Start<T> s;
+            s.shape = static_cast<std::uint32_t>(i);
+            s.p = primaries[i].at(hit->t);
+            s.n = sphere_normal(prep.back(), s.p);
+            if (!is_finite(s.n)) {
+                ++missed;  // hit point rounded onto the centre: no normal
+                continue;
+            }
+            const Vec3<T>& d = primaries[i].dir;
+            s.reflect = d - s.n * (T(2) * dot(d, s.n));
+            const Vec3d nd(s.n);
+            const Vec3d sd = dot(shadow_dirs[i], nd) < 0
+                                 ? shadow_dirs[i] - nd * (2 * dot(shadow_dirs[i], nd))
+                                 : shadow_dirs[i];
+            s.target = Vec3<T>(Vec3d(s.p) + sd * shadow_len[i]);
+            s.stratum = strata[i];
+            if (!decisive(s)) {
+                ++grazing;
+                continue;
+            }
+            starts.push_back(s);
+        }
+        const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
+            return M::occluded(prep[shape], ray);
+        };
+        policy_rows<T>(starts, self_hit, "self_intersection/spheres", std::string(M::name),
+                       std::to_string(missed) + " primary misses and " + std::to_string(grazing) +
+                           " grazing starts skipped",
+                       true, rows);
+    });
+}
+
+/// The flake's tangent contacts (size factor 2: 91 spheres on the floor polygon). Child on
+/// parent: hit points on each child within 30 degrees of its contact with the parent. Root on
+/// floor: hit points on the root within 30 degrees of its lowest point, and on the floor within
+/// 0.05 of the contact point (which lies on the diagonal shared by the floor's two triangles).
+/// Only the surface a ray leaves counts as a re-intersection.
+template <class T>
+void flake_rows(const Options& opt, std::vector<Row>& rows) {
+    gen::GenOptions go;
+    go.size = 2;
+    const Scene scene = gen::generate("flake", go);
+    const std::vector<gen::FlakeSphere> flake = gen::sphere_flake(go.size);
+    if (scene.spheres.size() != flake.size() || scene.polygons.size() != 1) {
+        rows.push_back(make_row("self_intersection/flake_contacts", "setup", "-", 0, 1,
+                                "setup errors", 0, "flake scene layout changed"));
+        return;
+    }
+    const std::string case_name = "self_intersection/flake_contacts";
+    Sampler rng(opt.seed, std::is_same_v<T, float> ? 520 : 620);
+    // Points on sphere `shape` near the unit direction `toward` (from its centre), within `cone`.
+    const auto near_point = [&](const Vec3d& toward, double cone) {
+        for (;;) {
+            const Vec3d u = rng.unit();
+            if (dot(u, toward) >= std::cos(cone)) {
+                return u;
+            }
+        }
+    };
+    constexpr double cone = 30 * std::numbers::pi / 180;
+    const std::size_t n = opt.rays;
+    // Sphere starts: child on parent (children 1..) and the root's bottom.
+    for (int kind = 0; kind < 2; ++kind) {
+        std::vector<std::uint32_t> which;
+        std::vector<Ray<T>> primaries;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t k =
+                kind == 0 ? static_cast<std::uint32_t>(1 + rng.index(flake.size() - 1)) : 0;
+            const Vec3d c(scene.spheres[k].center);
+            const double r = static_cast<double>(scene.spheres[k].radius);
+            const Vec3d toward = kind == 0 ? -flake[k].axis : Vec3d{0, 0, -1};
+            const Vec3d u = near_point(toward, cone);
+            const Vec3d target = c + u * r;
+            const Vec3d from = target + hemisphere(rng, u) * (r * rng.uniform(0.05, 1));
+            which.push_back(k);
+            primaries.push_back({Vec3<T>(from), Vec3<T>(target - from)});
+        }
+        const std::string label = kind == 0 ? "child-on-parent" : "root-on-floor(root)";
+        for_each_sphere_method<T>([&]<class M>() {
+            std::vector<typename M::Prepared> prep;
+            for (const SphereObject& s : scene.spheres) {
+                prep.push_back(M::prepare(Sphere<T>{Vec3<T>(s.center), static_cast<T>(s.radius)}));
+            }
+            std::vector<Start<T>> starts;
+            std::size_t missed = 0, grazing = 0;
+            for (std::size_t i = 0; i < primaries.size(); ++i) {
+                const auto hit = M::intersect(prep[which[i]], primaries[i]);
+                if (!hit) {
+                    ++missed;
+                    continue;
+                }
+                Start<T> s;
+                s.shape = which[i];
+                s.p = primaries[i].at(hit->t);
+                s.n = sphere_normal(prep[which[i]], s.p);
+                const Vec3<T>& d = primaries[i].dir;
+                s.reflect = d - s.n * (T(2) * dot(d, s.n));
+                const double r = static_cast<double>(scene.spheres[which[i]].radius);
+                s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d(s.n)) *
+                                                    (r * std::pow(10.0, rng.uniform(-2, 0))));
+                if (!decisive(s)) {
+                    ++grazing;
+                    continue;
+                }
+                starts.push_back(s);
+            }
+            const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
+                return M::occluded(prep[shape], ray);
+            };
+            policy_rows<T>(starts, self_hit, case_name, label + " " + std::string(M::name),
+                           std::to_string(missed) + " primary misses and " +
+                               std::to_string(grazing) + " grazing starts skipped",
+                           false, rows);
+        });
+    }
+    // Floor starts: the polygon as the fan (0, 1, 2), (0, 2, 3); primaries from above.
+    const std::vector<Vec3f>& q = scene.polygons[0].vertices;
+    const std::array<Triangle<T>, 2> floor{
+        Triangle<T>{Vec3<T>(q[0]), Vec3<T>(q[1]), Vec3<T>(q[2])},
+        Triangle<T>{Vec3<T>(q[0]), Vec3<T>(q[2]), Vec3<T>(q[3])}};
+    const Vec3d contact(scene.spheres[0].center - Vec3f{0, 0, scene.spheres[0].radius});
+    std::vector<Ray<T>> primaries;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3d d = rng.ball(0.05);
+        const Vec3d target = contact + Vec3d{d.x, d.y, 0};
+        const Vec3d from = target + hemisphere(rng, Vec3d{0, 0, 1}) * rng.uniform(0.01, 1);
+        primaries.push_back({Vec3<T>(from), Vec3<T>(target - from)});
+    }
+    for_each_triangle_intersector<T>([&]<class M>() {
+        const std::array<typename M::Prepared, 2> prep{M::prepare(floor[0]), M::prepare(floor[1])};
+        std::vector<Start<T>> starts;
+        std::size_t missed = 0, grazing = 0;
+        for (const Ray<T>& ray : primaries) {
+            Ray<T> r = ray;
+            std::optional<PrimHit<T>> best;
+            for (const auto& p : prep) {
+                if (const auto h = M::intersect(p, r)) {
+                    best = h;
+                    r.tmax = h->t;
+                }
+            }
+            if (!best) {
+                ++missed;
+                continue;
+            }
+            Start<T> s;
+            s.p = ray.at(best->t);
+            s.n = {T(0), T(0), T(1)};
+            s.reflect = {ray.dir.x, ray.dir.y, -ray.dir.z};
+            s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d{0, 0, 1}) *
+                                                std::pow(10.0, rng.uniform(-3, 0)));
+            if (!decisive(s)) {
+                ++grazing;
+                continue;
+            }
+            starts.push_back(s);
+        }
+        const auto self_hit = [&](std::uint32_t, const Ray<T>& ray) {
+            return M::occluded(prep[0], ray) || M::occluded(prep[1], ray);
+        };
+        policy_rows<T>(starts, self_hit, case_name, "root-on-floor(floor) " + std::string(M::name),
+                       std::to_string(missed) + " primary misses and " + std::to_string(grazing) +
+                           " grazing starts skipped",
+                       false, rows);
+    });
+}
+
+}  // namespace
+
+std::vector<Row> run_self_intersection(const Options& opt) {
+    std::vector<Row> rows;
+    triangle_rows<float>(opt, rows);
+    triangle_rows<double>(opt, rows);
+    sphere_rows<float>(opt, rows);
+    sphere_rows<double>(opt, rows);
+    flake_rows<float>(opt, rows);
+    flake_rows<double>(opt, rows);
+    return rows;
+}
+
+}  // namespace rtlab::stab
