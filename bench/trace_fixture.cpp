@@ -108,7 +108,8 @@ const BenchScene& bench_scene(const std::string& name) {
 std::vector<std::string> trace_scene_names() {
     if (quick_mode()) {
         // No stadium: the grid and the median kd-tree need about a second per 4096 rays there.
-        return {"flake_mesh2", "flake_spheres2", "soup", "mount"};
+        // Two flake sizes, so the report can fit trace time against primitive count.
+        return {"flake_mesh1", "flake_mesh2", "flake_spheres1", "flake_spheres2", "soup", "mount"};
     }
     return {"flake_mesh2", "flake_mesh3", "flake_spheres2", "flake_spheres3",
             "soup",        "stadium",     "mount"};
