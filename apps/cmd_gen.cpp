@@ -3,7 +3,7 @@
 #include "apps/commands.h"
 #include "datasets_gen/generators.h"
 #include "datasets_gen/memory_guard.h"
-#include "mesh/error.h"
+#include "base/error.h"
 #include "mesh/mesh_io.h"
 #include "scene/scene_io.h"
 

@@ -3,8 +3,8 @@
 // with --explain the scene's features and the integrator instance that runs.
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "trace/scene_tracer.h"

@@ -3,7 +3,7 @@
 // so `rtlab trace` can be checked on them.
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "mesh/error.h"
+#include "base/error.h"
 #include "mesh/mesh_io.h"
 #include "stability/fixtures.h"
 #include "stability/report.h"

@@ -3,7 +3,7 @@
 
 #include "datasets_gen/memory_guard.h"
 #include "datasets_gen/scene_parts.h"
-#include "mesh/error.h"
+#include "base/error.h"
 
 #include <string>
 #include <vector>

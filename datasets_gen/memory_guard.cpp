@@ -1,7 +1,7 @@
 // Memory guard for generators: an estimate compared with a limit (default half of physical RAM).
 #include "datasets_gen/memory_guard.h"
 
-#include "mesh/error.h"
+#include "base/error.h"
 
 #include <cstdio>
 #include <limits>

@@ -3,7 +3,7 @@
 // projected onto the sphere, so cells are near-uniform and there are no poles. O(triangles) time.
 #include "datasets_gen/tessellate.h"
 
-#include "mesh/error.h"
+#include "base/error.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,6 +1,13 @@
 #pragma once
 // The intersection-method concept: a stateless struct that prepares a shape once and then tests
 // rays against the prepared form. The same shape can be tested by every method of its kind.
+//
+// Per-ray set-up: a method may declare `using RayData = ...;` with
+// `static RayData precompute(const Ray<Scalar>&)` and the overloads
+// `intersect(prepared, ray, ray_data)` / `occluded(prepared, ray, ray_data)`. Callers that test
+// one ray against many primitives (traversal, benchmarks) call precompute once per ray through
+// precompute_ray<M>() and then intersect_with<M>() / occluded_with<M>(); methods without set-up
+// get an empty NoRayData and the two-argument calls.
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
@@ -9,6 +16,7 @@
 #include <concepts>
 #include <optional>
 #include <string_view>
+#include <tuple>
 
 namespace rtlab {
 
@@ -29,5 +37,75 @@ concept IntersectionMethod = OcclusionMethod<M> &&
     requires(const typename M::Prepared& p, const Ray<typename M::Scalar>& r) {
     { M::intersect(p, r) } -> std::same_as<std::optional<PrimHit<typename M::Scalar>>>;
 };
+
+/// A method with per-ray set-up (see the file comment): precompute once, test many primitives.
+template <class M>
+concept HasRayData = OcclusionMethod<M> && requires(const typename M::Prepared& p,
+                                                    const Ray<typename M::Scalar>& r,
+                                                    const typename M::RayData& d) {
+    { M::precompute(r) } -> std::same_as<typename M::RayData>;
+    { M::occluded(p, r, d) } -> std::same_as<bool>;
+};
+
+/// The per-ray data of methods without set-up.
+struct NoRayData {};
+
+namespace detail {
+template <class M>
+struct RayDataOf {
+    using type = NoRayData;
+};
+template <HasRayData M>
+struct RayDataOf<M> {
+    using type = typename M::RayData;
+};
+}  // namespace detail
+
+/// M::RayData, or NoRayData for a method without per-ray set-up.
+template <class M>
+using RayDataOf = typename detail::RayDataOf<M>::type;
+
+/// Runs M's per-ray set-up (nothing for methods without one). Call once per ray.
+template <class M>
+RayDataOf<M> precompute_ray(const Ray<typename M::Scalar>& ray) {
+    if constexpr (HasRayData<M>) {
+        return M::precompute(ray);
+    } else {
+        return {};
+    }
+}
+
+/// M::intersect with the ray's precomputed data (d from precompute_ray<M>(ray)).
+template <IntersectionMethod M>
+std::optional<PrimHit<typename M::Scalar>> intersect_with(const typename M::Prepared& p,
+                                                          const Ray<typename M::Scalar>& ray,
+                                                          const RayDataOf<M>& d) {
+    if constexpr (HasRayData<M>) {
+        return M::intersect(p, ray, d);
+    } else {
+        return M::intersect(p, ray);
+    }
+}
+
+/// M::occluded with the ray's precomputed data (d from precompute_ray<M>(ray)).
+template <OcclusionMethod M>
+bool occluded_with(const typename M::Prepared& p,
+                   const Ray<typename M::Scalar>& ray,
+                   const RayDataOf<M>& d) {
+    if constexpr (HasRayData<M>) {
+        return M::occluded(p, ray, d);
+    } else {
+        return M::occluded(p, ray);
+    }
+}
+
+/// Calls f.template operator()<M>() for each type M of the std::tuple type List, in order. The
+/// method lists in intersect/*/methods.h are such tuples.
+template <class List, class F>
+void for_each_type(F&& f) {
+    [&]<class... Ms>(std::tuple<Ms...>*) {
+        (f.template operator()<Ms>(), ...);
+    }(static_cast<List*>(nullptr));
+}
 
 }  // namespace rtlab

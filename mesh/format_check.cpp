@@ -2,7 +2,7 @@
 // OpenMesh would silently misread. Cost: O(file size).
 #include "mesh/format_check.h"
 
-#include "mesh/error.h"
+#include "base/error.h"
 
 #include <algorithm>
 #include <array>

@@ -4,7 +4,7 @@
 // n vertices v0..v(n-1) becomes the n-2 triangles (v0, v(j), v(j+1)) for j = 1..n-2, appended in
 // that order right after face k-1's triangles, so triangle order follows the file.
 
-#include "mesh/error.h"
+#include "base/error.h"
 #include "mesh/triangle_mesh.h"
 
 #include <filesystem>

@@ -2,8 +2,8 @@
 // a temporary file beside it (mesh/atomic_file.h), so a failure never leaves a partial image.
 #include "render/image.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 #include <OpenImageIO/imageio.h>
 #include <algorithm>

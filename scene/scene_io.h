@@ -2,7 +2,7 @@
 // Scene files: JSON (documented in docs/scene-format.md) or a bare mesh file that becomes a scene
 // with one mesh, the default material, one light and a camera framing it.
 
-#include "mesh/error.h"
+#include "base/error.h"
 #include "scene/scene.h"
 
 #include <filesystem>

@@ -1,7 +1,7 @@
 // Markdown and JSON writers of the stability report.
 #include "stability/report.h"
 
-#include "mesh/atomic_file.h"
+#include "base/atomic_file.h"
 
 #include <cmath>
 #include <cstdio>

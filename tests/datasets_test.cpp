@@ -4,7 +4,7 @@
 #include "datasets_gen/memory_guard.h"
 #include "datasets_gen/sphere_flake.h"
 #include "datasets_gen/tessellate.h"
-#include "mesh/error.h"
+#include "base/error.h"
 #include "mesh/mesh_stats.h"
 #include "scene/scene_io.h"
 

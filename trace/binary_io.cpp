@@ -1,8 +1,8 @@
 // Ray and hit files: raw little-endian records (see binary_io.h).
 #include "trace/binary_io.h"
 
-#include "mesh/atomic_file.h"
-#include "mesh/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 #include <bit>
 #include <cmath>

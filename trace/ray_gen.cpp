@@ -1,7 +1,7 @@
 // Ray-set generators (see ray_gen.h for the definitions and the offset policy).
 #include "trace/ray_gen.h"
 
-#include "mesh/error.h"
+#include "base/error.h"
 #include "trace/camera.h"
 #include "trace/scene_tracer.h"
 #include "trace/surface.h"

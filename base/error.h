@@ -1,5 +1,6 @@
 #pragma once
-// The one exception type of rtlab's file-facing code (mesh/, scene/, datasets_gen/, apps/).
+// The one exception type of rtlab's file-facing code (mesh/, scene/, datasets_gen/, trace/ and
+// render/ file I/O, apps/): a small base library every layer may use.
 
 #include <stdexcept>
 

@@ -2,7 +2,7 @@
 // Writing output files completely or not at all: write a temporary file beside the target, then
 // rename it over the target (rename is atomic within one file system).
 
-#include "mesh/error.h"
+#include "base/error.h"
 
 #include <filesystem>
 #include <fstream>
