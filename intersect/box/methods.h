@@ -6,7 +6,17 @@
 #include "intersect/box/obb.h"
 #include "intersect/method.h"
 
+#include <tuple>
+
 namespace rtlab {
+
+/// Every AABB method in scalar T as a type list; the first is the tracer's default.
+template <class T>
+using AabbMethods = std::tuple<AabbSlabs<T>, AabbSlabsRobust<T>>;
+
+/// Every OBB method in scalar T as a type list; the first is the tracer's default.
+template <class T>
+using ObbMethods = std::tuple<ObbSlabs<T>>;
 
 static_assert(IntersectionMethod<AabbSlabs<float>>);
 static_assert(IntersectionMethod<AabbSlabsRobust<double>>);

@@ -15,6 +15,7 @@
 
 #include <optional>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 namespace rtlab {
@@ -132,6 +133,12 @@ struct ImplicitLaguerre : ImplicitMethodBase<Surface, T, ImplicitLaguerre<Surfac
         });
     }
 };
+
+/// Every implicit-surface method on Surface in scalar T as a type list; the first is the
+/// tracer's default.
+template <template <class> class Surface, class T>
+using ImplicitMethods = std::
+    tuple<ImplicitClosedForm<Surface, T>, ImplicitNewton<Surface, T>, ImplicitLaguerre<Surface, T>>;
 
 static_assert(ImplicitSurface<Torus<float>>);
 static_assert(ImplicitSurface<TangleCube<double>>);

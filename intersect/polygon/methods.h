@@ -5,7 +5,13 @@
 #include "intersect/polygon/crossing_count.h"
 #include "intersect/polygon/winding_number.h"
 
+#include <tuple>
+
 namespace rtlab {
+
+/// Every polygon method in scalar T as a type list; the first is the tracer's default.
+template <class T>
+using PolygonMethods = std::tuple<PolygonCrossing<T>, PolygonWinding<T>>;
 
 static_assert(IntersectionMethod<PolygonCrossing<float>>);
 static_assert(IntersectionMethod<PolygonWinding<double>>);

@@ -6,7 +6,13 @@
 #include "intersect/sphere/geometric.h"
 #include "intersect/sphere/stable.h"
 
+#include <tuple>
+
 namespace rtlab {
+
+/// Every sphere method in scalar T as a type list; the first is the tracer's default.
+template <class T>
+using SphereMethods = std::tuple<SphereStable<T>, SphereGeometric<T>, SphereAlgebraic<T>>;
 
 static_assert(IntersectionMethod<SphereGeometric<float>>);
 static_assert(IntersectionMethod<SphereAlgebraic<float>>);
