@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <type_traits>
 
 namespace rtlab {
 
@@ -18,7 +19,7 @@ namespace {
 constexpr std::size_t grain = 256;
 
 template <class M>
-AnyPrimSet make_set(std::vector<typename M::Shape> shapes,
+AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                     std::vector<std::uint32_t> ids,
                     const std::string& accel,
                     const ClipFn& clip,
@@ -37,32 +38,6 @@ AnyPrimSet make_set(std::vector<typename M::Shape> shapes,
     build_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return set;
-}
-
-// Picks the method named for `family` in `wanted` (or the family's default) and builds the set
-// with the method type at position I of Ms whose name matches.
-template <class... Ms>
-AnyPrimSet make_named_set(
-    std::string_view method,
-    std::vector<typename std::tuple_element_t<0, std::tuple<Ms...>>::Shape> shapes,
-    std::vector<std::uint32_t> ids,
-    const std::string& accel,
-    const ClipFn& clip,
-    double& build_ms) {
-    AnyPrimSet out;
-    bool found = false;
-    (
-        [&] {
-            if (!found && Ms::name == method) {
-                out = make_set<Ms>(std::move(shapes), std::move(ids), accel, clip, build_ms);
-                found = true;
-            }
-        }(),
-        ...);
-    if (!found) {
-        throw std::invalid_argument("internal: method " + std::string(method) + " not in its set");
-    }
-    return out;
 }
 
 std::string_view pick_method(const MethodFamily& fam, const std::vector<std::string>& wanted) {
@@ -85,6 +60,34 @@ const MethodFamily& family(std::string_view name) {
     throw std::logic_error("no method family " + std::string(name));
 }
 
+// Appends one prepared set per non-empty shape group, with the method the setup names for the
+// group's family (the family's default when it names none), and its "family=method" label.
+struct SetAdder {
+    const TraceSetup& setup;
+    std::vector<AnyPrimSet>& sets;
+    std::vector<std::string>& labels;
+    double& build_ms;
+
+    // Adds shapes (global ids `ids`) unless empty; clip enables kd-tree perfect splits.
+    template <class Shape>
+    void operator()(const std::vector<Shape>& shapes,
+                    std::vector<std::uint32_t> ids,
+                    const ClipFn& clip = {}) {
+        if (shapes.empty()) {
+            return;
+        }
+        using Family = FamilyOf<Shape>;
+        const std::string_view m = pick_method(family(Family::name), setup.methods);
+        const bool found = with_method_named<Shape>(m, [&]<class M>() {
+            sets.push_back(make_set<M>(shapes, std::move(ids), setup.accel, clip, build_ms));
+        });
+        if (!found) {
+            throw std::invalid_argument("internal: method " + std::string(m) + " not in its set");
+        }
+        labels.push_back(std::string(Family::name) + "=" + std::string(m));
+    }
+};
+
 // Runs f(set, accel, robust-tag) with every type static: once per set per batch.
 template <class F>
 void visit_set(const AnyPrimSet& set, bool robust, F&& f) {
@@ -101,45 +104,147 @@ void visit_set(const AnyPrimSet& set, bool robust, F&& f) {
         set);
 }
 
-// Runs body(range, sink) over [0, n) in parallel; sink is a per-thread TraversalStats when
-// counting, else NoStats, so the uncounted path compiles without any counter updates.
-template <class Body>
-void parallel_rays(std::size_t n,
-                   tbb::enumerable_thread_specific<TraversalStats>* counts,
-                   const Body& body) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          if (counts != nullptr) {
-                              body(r, counts->local());
-                          } else {
-                              NoStats none;
-                              body(r, none);
-                          }
-                      });
+// Stats sinks of the batch loop: local() is taken once per TBB range, local[i] is what ray i's
+// traversal counts into, finish() runs after the last set.
+
+// No counting: traversal compiles without counter updates.
+struct NoSink {
+    struct Local {
+        NoStats none;
+        NoStats& operator[](std::size_t) { return none; }
+    };
+    Local local() { return {}; }
+    void finish() {}
+};
+
+// One TraversalStats per thread, all added to *out at the end.
+struct BatchSink {
+    TraversalStats* out;
+    tbb::enumerable_thread_specific<TraversalStats> counts{};
+    struct Local {
+        TraversalStats& thread;
+        TraversalStats& operator[](std::size_t) { return thread; }
+    };
+    Local local() { return {counts.local()}; }
+    void finish() {
+        for (const TraversalStats& c : counts) {
+            *out += c;
+        }
+    }
+};
+
+// Each ray's own counts, per_ray[i] for rays[i].
+struct PerRaySink {
+    std::span<TraversalStats> per_ray;
+    struct Local {
+        std::span<TraversalStats> per_ray;
+        TraversalStats& operator[](std::size_t i) { return per_ray[i]; }
+    };
+    Local local() { return {per_ray}; }
+    void finish() {}
+};
+
+// Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray
+// set-up runs once per ray and set, before traversal.
+struct ClosestQuery {
+    std::span<const Rayf> rays;
+    std::span<Hit> hits;
+
+    template <class M>
+    static constexpr bool accepts = IntersectionMethod<M>;
+
+    template <bool IsRobust, class M, class A, class Stats>
+    void trace(const PrimSet<M>& s, const A& acc, std::size_t i, Stats& stats) const {
+        Rayf ray = rays[i];
+        ray.tmax = std::min(ray.tmax, hits[i].t);
+        const RayDataOf<M> rd = precompute_ray<M>(ray);
+        std::uint32_t best = invalid_id;
+        PrimHit<float> best_hit{};
+        const auto leaf = [&](std::uint32_t id, Rayf& rr) {
+            const auto h = intersect_with<M>(s.prims[id], rr, rd);
+            if (!h) {
+                return false;
+            }
+            rr.tmax = h->t;
+            best = id;
+            best_hit = *h;
+            return true;
+        };
+        if (acc.template intersect<IsRobust>(ray, leaf, stats)) {
+            hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.ids[best]};
+        }
+    }
+};
+
+// Any hit: rays an earlier set already blocks are skipped. Per-ray set-up as ClosestQuery.
+struct AnyHitQuery {
+    std::span<const Rayf> rays;
+    std::span<std::uint32_t> blocker;
+
+    template <class M>
+    static constexpr bool accepts = true;
+
+    template <bool IsRobust, class M, class A, class Stats>
+    void trace(const PrimSet<M>& s, const A& acc, std::size_t i, Stats& stats) const {
+        if (blocker[i] != invalid_id) {
+            return;
+        }
+        const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
+        std::uint32_t found = invalid_id;
+        const auto leaf = [&](std::uint32_t id, const Rayf& rr) {
+            if (!occluded_with<M>(s.prims[id], rr, rd)) {
+                return false;
+            }
+            found = id;
+            return true;
+        };
+        if (acc.template occluded<IsRobust>(rays[i], leaf, stats)) {
+            blocker[i] = s.ids[found];
+        }
+    }
+};
+
+// The one batch loop: every set in order (its method and structure static), its rays in
+// parallel. Each ray is independent, so results do not depend on the thread count.
+template <class Query, class Sink>
+void trace_batch(const std::vector<AnyPrimSet>& sets, bool robust, const Query& query, Sink& sink) {
+    for (const AnyPrimSet& set : sets) {
+        visit_set(set, robust, [&](const auto& s, const auto& acc, auto is_robust) {
+            using M = typename std::decay_t<decltype(s)>::Method;
+            if constexpr (!Query::template accepts<M>) {
+                throw std::invalid_argument(std::string(M::name) +
+                                            " answers hit/no-hit only: trace with --any-hit");
+            } else {
+                tbb::parallel_for(tbb::blocked_range<std::size_t>(0, query.rays.size(), grain),
+                                  [&](const tbb::blocked_range<std::size_t>& r) {
+                                      auto local = sink.local();
+                                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                          query.template trace<decltype(is_robust)::value>(
+                                              s, acc, i, local[i]);
+                                      }
+                                  });
+            }
+        });
+    }
+    sink.finish();
 }
 
-void add_counts(const tbb::enumerable_thread_specific<TraversalStats>& counts,
-                TraversalStats* stats) {
+// trace_batch counting per thread into *stats when given, else without counters.
+template <class Query>
+void trace_maybe_counted(const std::vector<AnyPrimSet>& sets,
+                         bool robust,
+                         const Query& query,
+                         TraversalStats* stats) {
     if (stats != nullptr) {
-        for (const TraversalStats& c : counts) {
-            *stats += c;
-        }
+        BatchSink sink{stats};
+        trace_batch(sets, robust, query, sink);
+    } else {
+        NoSink sink;
+        trace_batch(sets, robust, query, sink);
     }
 }
 
 }  // namespace
-
-const std::vector<MethodFamily>& method_families() {
-    static const std::vector<MethodFamily> families{
-        {"triangle", {"moller_trumbore", "badouel", "segura_feito", "watertight"}},
-        {"sphere", {"stable", "geometric", "algebraic"}},
-        {"polygon", {"crossing_count", "winding_number"}},
-        {"box", {"slabs", "slabs_robust"}},
-        {"obb", {"obb_slabs"}},
-        {"implicit", {"closed_form", "newton", "laguerre"}},
-    };
-    return families;
-}
 
 SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(setup.robust) {
     if (find_accel(setup.accel) == nullptr) {
@@ -224,66 +329,18 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
         }
     }
 
-    const auto add = [&](std::string_view fam, AnyPrimSet set, std::string_view method) {
-        sets_.push_back(std::move(set));
-        set_methods_.push_back(std::string(fam) + "=" + std::string(method));
+    SetAdder add{setup, sets_, set_methods_, build_ms_};
+    // Perfect splits for kd-trees: the triangle clipped to the node box.
+    const ClipFn clip = [&tris](std::uint32_t i, const Bounds3f& box) {
+        return clip_triangle_bounds(tris[i].p0, tris[i].p1, tris[i].p2, box);
     };
-    const std::string& acc = setup.accel;
-    if (!tris.empty()) {
-        const std::string_view m = pick_method(family("triangle"), setup.methods);
-        // Perfect splits for kd-trees: the triangle clipped to the node box.
-        const ClipFn clip = [&tris](std::uint32_t i, const Bounds3f& box) {
-            return clip_triangle_bounds(tris[i].p0, tris[i].p1, tris[i].p2, box);
-        };
-        add("triangle",
-            make_named_set<MollerTrumbore<float>, Badouel<float>, SeguraFeito<float>,
-                           Watertight<float>>(m, tris, std::move(tri_ids), acc, clip, build_ms_),
-            m);
-    }
-    if (!spheres.empty()) {
-        const std::string_view m = pick_method(family("sphere"), setup.methods);
-        add("sphere",
-            make_named_set<SphereStable<float>, SphereGeometric<float>, SphereAlgebraic<float>>(
-                m, std::move(spheres), std::move(sphere_ids), acc, {}, build_ms_),
-            m);
-    }
-    if (!polys.empty()) {
-        const std::string_view m = pick_method(family("polygon"), setup.methods);
-        add("polygon",
-            make_named_set<PolygonCrossing<float>, PolygonWinding<float>>(
-                m, std::move(polys), std::move(poly_ids), acc, {}, build_ms_),
-            m);
-    }
-    if (!boxes.empty()) {
-        const std::string_view m = pick_method(family("box"), setup.methods);
-        add("box",
-            make_named_set<AabbSlabs<float>, AabbSlabsRobust<float>>(
-                m, std::move(boxes), std::move(box_ids), acc, {}, build_ms_),
-            m);
-    }
-    if (!obbs.empty()) {
-        const std::string_view m = pick_method(family("obb"), setup.methods);
-        add("obb",
-            make_named_set<ObbSlabs<float>>(m, std::move(obbs), std::move(obb_ids), acc, {},
-                                            build_ms_),
-            m);
-    }
-    if (!tori.empty()) {
-        const std::string_view m = pick_method(family("implicit"), setup.methods);
-        add("implicit",
-            make_named_set<ImplicitClosedForm<Torus, float>, ImplicitNewton<Torus, float>,
-                           ImplicitLaguerre<Torus, float>>(m, std::move(tori), std::move(torus_ids),
-                                                           acc, {}, build_ms_),
-            m);
-    }
-    if (!tangles.empty()) {
-        const std::string_view m = pick_method(family("implicit"), setup.methods);
-        add("implicit",
-            make_named_set<ImplicitClosedForm<TangleCube, float>, ImplicitNewton<TangleCube, float>,
-                           ImplicitLaguerre<TangleCube, float>>(
-                m, std::move(tangles), std::move(tangle_ids), acc, {}, build_ms_),
-            m);
-    }
+    add(tris, std::move(tri_ids), clip);
+    add(spheres, std::move(sphere_ids));
+    add(polys, std::move(poly_ids));
+    add(boxes, std::move(box_ids));
+    add(obbs, std::move(obb_ids));
+    add(tori, std::move(torus_ids));
+    add(tangles, std::move(tangle_ids));
 }
 
 std::vector<AccelInfo> SceneTracer::infos() const {
@@ -301,40 +358,7 @@ void SceneTracer::intersect(std::span<const Rayf> rays,
         throw std::invalid_argument("intersect: hits and rays differ in size");
     }
     std::fill(hits.begin(), hits.end(), Hit{});
-    tbb::enumerable_thread_specific<TraversalStats> counts;
-    for (const AnyPrimSet& set : sets_) {
-        visit_set(set, robust_, [&](const auto& s, const auto& acc, auto robust) {
-            using M = typename std::decay_t<decltype(s)>::Method;
-            if constexpr (!IntersectionMethod<M>) {
-                throw std::invalid_argument(std::string(M::name) +
-                                            " answers hit/no-hit only: trace with --any-hit");
-            } else {
-                const auto trace_range = [&](const tbb::blocked_range<std::size_t>& r, auto& sink) {
-                    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        Rayf ray = rays[i];
-                        ray.tmax = std::min(ray.tmax, hits[i].t);
-                        std::uint32_t best = invalid_id;
-                        PrimHit<float> best_hit{};
-                        const auto leaf = [&](std::uint32_t id, Rayf& rr) {
-                            const auto h = M::intersect(s.prims[id], rr);
-                            if (!h) {
-                                return false;
-                            }
-                            rr.tmax = h->t;
-                            best = id;
-                            best_hit = *h;
-                            return true;
-                        };
-                        if (acc.template intersect<decltype(robust)::value>(ray, leaf, sink)) {
-                            hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.ids[best]};
-                        }
-                    }
-                };
-                parallel_rays(rays.size(), stats != nullptr ? &counts : nullptr, trace_range);
-            }
-        });
-    }
-    add_counts(counts, stats);
+    trace_maybe_counted(sets_, robust_, ClosestQuery{rays, hits}, stats);
 }
 
 void SceneTracer::intersect_counted(std::span<const Rayf> rays,
@@ -344,39 +368,8 @@ void SceneTracer::intersect_counted(std::span<const Rayf> rays,
         throw std::invalid_argument("intersect_counted: hits, counts and rays differ in size");
     }
     std::fill(hits.begin(), hits.end(), Hit{});
-    for (const AnyPrimSet& set : sets_) {
-        visit_set(set, robust_, [&](const auto& s, const auto& acc, auto robust) {
-            using M = typename std::decay_t<decltype(s)>::Method;
-            if constexpr (!IntersectionMethod<M>) {
-                throw std::invalid_argument(std::string(M::name) +
-                                            " answers hit/no-hit only: trace with --any-hit");
-            } else {
-                const auto trace_range = [&](const tbb::blocked_range<std::size_t>& r, auto&) {
-                    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        Rayf ray = rays[i];
-                        ray.tmax = std::min(ray.tmax, hits[i].t);
-                        std::uint32_t best = invalid_id;
-                        PrimHit<float> best_hit{};
-                        const auto leaf = [&](std::uint32_t id, Rayf& rr) {
-                            const auto h = M::intersect(s.prims[id], rr);
-                            if (!h) {
-                                return false;
-                            }
-                            rr.tmax = h->t;
-                            best = id;
-                            best_hit = *h;
-                            return true;
-                        };
-                        TraversalStats& sink = per_ray[i];
-                        if (acc.template intersect<decltype(robust)::value>(ray, leaf, sink)) {
-                            hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.ids[best]};
-                        }
-                    }
-                };
-                parallel_rays(rays.size(), nullptr, trace_range);
-            }
-        });
-    }
+    PerRaySink sink{per_ray};
+    trace_batch(sets_, robust_, ClosestQuery{rays, hits}, sink);
 }
 
 void SceneTracer::occluded(std::span<const Rayf> rays,
@@ -386,32 +379,7 @@ void SceneTracer::occluded(std::span<const Rayf> rays,
         throw std::invalid_argument("occluded: blockers and rays differ in size");
     }
     std::fill(blocker.begin(), blocker.end(), invalid_id);
-    tbb::enumerable_thread_specific<TraversalStats> counts;
-    for (const AnyPrimSet& set : sets_) {
-        visit_set(set, robust_, [&](const auto& s, const auto& acc, auto robust) {
-            using M = typename std::decay_t<decltype(s)>::Method;
-            const auto trace_range = [&](const tbb::blocked_range<std::size_t>& r, auto& sink) {
-                for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                    if (blocker[i] != invalid_id) {
-                        continue;
-                    }
-                    std::uint32_t found = invalid_id;
-                    const auto leaf = [&](std::uint32_t id, const Rayf& rr) {
-                        if (!M::occluded(s.prims[id], rr)) {
-                            return false;
-                        }
-                        found = id;
-                        return true;
-                    };
-                    if (acc.template occluded<decltype(robust)::value>(rays[i], leaf, sink)) {
-                        blocker[i] = s.ids[found];
-                    }
-                }
-            };
-            parallel_rays(rays.size(), stats != nullptr ? &counts : nullptr, trace_range);
-        });
-    }
-    add_counts(counts, stats);
+    trace_maybe_counted(sets_, robust_, AnyHitQuery{rays, blocker}, stats);
 }
 
 }  // namespace rtlab

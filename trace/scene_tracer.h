@@ -18,9 +18,8 @@ namespace rtlab {
 /// How to trace: which structure, which intersection methods, robust traversal or not.
 struct TraceSetup {
     std::string accel = "bvh:binned";  ///< a registry name (accel/any_accel.h)
-    /// Method names (one per family at most); families not named use their default
-    /// (triangle: moller_trumbore, sphere: stable, polygon: crossing_count, box: slabs,
-    /// obb: obb_slabs, implicit: closed_form).
+    /// Method names (one per family at most); families not named use their default, the first
+    /// of their list (method_families()).
     std::vector<std::string> methods;
     bool robust = false;  ///< conservative box tests in traversal (Ize 2013)
 };
