@@ -135,10 +135,14 @@ Command add_trace(CLI::App& root) {
     sub->add_option("--rays", a->rays, "Ray file (32-byte float32 records, see rtlab rays)")
         ->required();
     sub->add_option("--accel", a->accel, "Structure (see rtlab accels; default bvh:binned)");
+    std::string defaults;
+    for (const MethodFamily& f : method_families()) {
+        defaults += (defaults.empty() ? "" : ", ") + std::string(f.methods.front());
+    }
     sub->add_option("--method", a->method,
                     "Intersection method(s), comma-separated, one per primitive family "
-                    "(defaults: moller_trumbore, stable, crossing_count, slabs, obb_slabs, "
-                    "closed_form)");
+                    "(defaults: " +
+                        defaults + "; all: rtlab list)");
     sub->add_flag("--any-hit", a->any_hit, "Any-hit (occlusion) queries instead of closest hit");
     sub->add_option("--hits", a->hits,
                     "Write hits: per ray float32 t (+inf miss; 0 occluded with --any-hit), "
