@@ -19,7 +19,7 @@ namespace rtlab {
 /// A binary BVH: the root at 0, then child pairs in the order a depth-first build splits their
 /// parents (a left subtree's pairs precede its right sibling's), and the leaves' primitive ids.
 struct Bvh {
-    /// Build parameters; out-of-range values are clamped by build() and stored clamped.
+    /// Build parameters; the builders clamp out-of-range values and store the clamped ones.
     struct Config {
         std::uint32_t max_leaf_size = 4;  ///< leaves never hold more (clamped to [1, 2^30 - 1])
         std::uint32_t bin_count = 16;     ///< bins per axis for binned SAH (>= 1; 1 = median)
