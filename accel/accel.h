@@ -60,6 +60,16 @@ concept AnyHitFn = requires(F& f, std::uint32_t id, const Rayf& ray) {
     { f(id, ray) } -> std::convertible_to<bool>;
 };
 
+/// The one rule every builder applies: a primitive box is indexed only when its coordinates are
+/// finite and lo <= hi on every axis. An empty box is hit by no ray, a NaN box bounds no real
+/// geometry, and an infinite one would make every enclosing node infinite (unbounded primitives
+/// such as planes belong outside the structures). Such primitives are never offered to a leaf
+/// callback, by any structure.
+inline bool is_usable_box(const Bounds3f& b) {
+    return is_finite(b.lo) && is_finite(b.hi) && b.lo.x <= b.hi.x && b.lo.y <= b.hi.y &&
+           b.lo.z <= b.hi.z;
+}
+
 /// Build-time only: the part of primitive `id` inside `box`, as a (possibly empty) box. Gives
 /// kd-trees "perfect splits" (Havran; Wald & Havran 2006); without it they use the clipped
 /// bounds.
@@ -92,22 +102,27 @@ struct NullAnyHit {
 };
 }  // namespace detail
 
-/// What every structure offers. `validate()` returns an empty string when every invariant holds,
-/// else a description of the first violation.
+/// What every structure offers, and everything the tracer relies on: closest-hit and any-hit
+/// queries with and without counting, each for both values of the IsRobust template parameter
+/// (conservative box tests, Ize 2013), plus bounds, figures and the invariant check. Structures
+/// are built by free builder functions listed in the registry (accel/registry.cpp), so building is
+/// not part of the concept. `validate()` returns an empty string when every invariant holds, else
+/// a description of the first violation.
 template <class A>
 concept Accel = requires(const A& a,
                          Rayf& ray,
                          const Rayf& cray,
-                         const BuildInput& in,
-                         const typename A::Config& cfg,
                          TraversalStats& st,
                          detail::NullClosestHit closest,
                          detail::NullAnyHit any) {
-    { A::build(in, cfg) } -> std::same_as<A>;
     { a.intersect(ray, closest) } -> std::same_as<bool>;
-    { a.intersect(ray, closest, st) } -> std::same_as<bool>;
+    { a.template intersect<false>(ray, closest, st) } -> std::same_as<bool>;
+    { a.template intersect<true>(ray, closest, st) } -> std::same_as<bool>;
+    { a.template intersect<true>(ray, closest) } -> std::same_as<bool>;
     { a.occluded(cray, any) } -> std::same_as<bool>;
-    { a.occluded(cray, any, st) } -> std::same_as<bool>;
+    { a.template occluded<false>(cray, any, st) } -> std::same_as<bool>;
+    { a.template occluded<true>(cray, any, st) } -> std::same_as<bool>;
+    { a.template occluded<true>(cray, any) } -> std::same_as<bool>;
     { a.bounds() } -> std::same_as<Bounds3f>;
     { a.info() } -> std::same_as<AccelInfo>;
     { a.validate() } -> std::same_as<std::string>;

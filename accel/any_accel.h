@@ -1,44 +1,70 @@
 #pragma once
-// Runtime choice of acceleration structure: a std::variant of every structure plus one registry
-// table (name, description, build function) that feeds the command line, the tests and the
-// benchmarks. The choice is made once per batch with std::visit, never per ray.
+// Runtime choice of acceleration structure: a std::variant over the structure types of one list
+// (AccelTypes) plus one registry table (accel/registry.cpp: name, description, parameters, build
+// function per row) that feeds the command line, the tests, the benchmarks and the sweeps. The
+// choice is made once per batch with std::visit, never per ray; every instantiation over the
+// structure types (the tracer's, the benchmarks') is generated from AccelTypes.
 //
-// Adding a structure: include its header here, add it to AnyAccel, add one row per builder to
-// the table in any_accel.cpp. accel_info, accel_validate and visit_accel need no change.
+// Adding a builder: one accel/<kind>/build_<name>.cpp and one row in accel/registry.cpp.
+// Adding a structure or node layout: its header (and .cpp), one entry in AccelTypes below, and
+// its row(s) in accel/registry.cpp. docs/architecture.md, "How to add ...", has the details.
 
 #include "accel/accel.h"
 #include "accel/brute_force.h"
 #include "accel/bvh/bvh.h"
 #include "accel/grid/grid.h"
 #include "accel/kdtree/kdtree.h"
+#include "accel/spec.h"
 
 #include <span>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace rtlab {
 
-/// Any built acceleration structure.
-using AnyAccel = std::variant<BruteForce, Bvh, KdTree, Grid>;
+/// Every structure type (node layout) a registry row can build.
+using AccelTypes = std::tuple<BruteForce, Bvh, KdTree, Grid>;
 
-/// One registry row: a structure with one builder configuration.
+namespace detail {
+template <class List>
+struct VariantOf;
+template <class... As>
+struct VariantOf<std::tuple<As...>> {
+    static_assert((Accel<As> && ...), "every AccelTypes entry satisfies the Accel concept");
+    using type = std::variant<As...>;
+};
+}  // namespace detail
+
+/// Any built acceleration structure.
+using AnyAccel = typename detail::VariantOf<AccelTypes>::type;
+
+/// One registry row: a structure built by one builder, with the parameters it accepts.
 struct AccelEntry {
-    std::string_view name;                 ///< command-line name, e.g. "bvh:binned"
-    std::string_view description;          ///< one line for --help and reports
-    AnyAccel (*build)(const BuildInput&);  ///< builds with this row's configuration
+    std::string_view name;          ///< spec name, e.g. "bvh:binned"
+    std::string_view description;   ///< one line for `rtlab list` and reports
+    std::vector<ParamSpec> params;  ///< the keys a spec may set, in canonical order
+    AnyAccel (*build)(const BuildInput&, const AccelSpec&);  ///< builds with the spec's values
 };
 
 /// Every registered structure/builder, in a fixed order (brute force first).
 std::span<const AccelEntry> accel_registry();
 
-/// The row called `name`, or nullptr.
+/// The row called `name` (a bare name, no parameters), or nullptr.
 const AccelEntry* find_accel(std::string_view name);
 
-/// Builds the structure called `name`; throws std::invalid_argument listing the known names
-/// when there is none.
-AnyAccel build_accel(std::string_view name, const BuildInput& in);
+/// The spec of row `e` with every parameter at its default.
+AccelSpec default_spec(const AccelEntry& e);
+
+/// Builds the structure a parsed spec names.
+AnyAccel build_accel(const AccelSpec& spec, const BuildInput& in);
+
+/// Parses `spec` (see parse_accel_spec, which throws std::invalid_argument on a bad spec) and
+/// builds it.
+AnyAccel build_accel(std::string_view spec, const BuildInput& in);
 
 /// Calls f once with the concrete structure held by a (a const reference). Put the whole batch
 /// loop inside f so the dispatch happens once per batch, e.g.

@@ -13,18 +13,16 @@ namespace rtlab {
 
 /// The reference structure: a flat list of primitive boxes.
 struct BruteForce {
-    /// Nothing to configure.
-    struct Config {};
+    std::vector<Bounds3f> boxes;  ///< one per primitive id; empty where is_usable_box fails
+    Bounds3f scene_bounds;        ///< union of the usable boxes
 
-    std::vector<Bounds3f> boxes;  ///< one per primitive id
-    Bounds3f scene_bounds;        ///< union of all boxes
-
-    /// Copies the boxes; O(N).
-    [[nodiscard]] static BruteForce build(const BuildInput& in, const Config& = {}) {
+    /// Copies the usable boxes (others become empty boxes, which no ray meets); O(N).
+    [[nodiscard]] static BruteForce build(const BuildInput& in) {
         BruteForce b;
-        b.boxes.assign(in.bounds.begin(), in.bounds.end());
-        for (const Bounds3f& box : b.boxes) {
-            b.scene_bounds.extend(box);
+        b.boxes.reserve(in.bounds.size());
+        for (const Bounds3f& box : in.bounds) {
+            b.boxes.push_back(is_usable_box(box) ? box : Bounds3f{});
+            b.scene_bounds.extend(b.boxes.back());
         }
         return b;
     }
@@ -85,12 +83,14 @@ struct BruteForce {
         return i;
     }
 
-    /// Checks that the scene box contains every primitive box (NaN boxes are never hit).
+    /// Checks that every box is usable or empty and that the scene box contains the usable ones.
     std::string validate() const {
         for (std::uint32_t i = 0; i < boxes.size(); ++i) {
             const Bounds3f& b = boxes[i];
-            const bool nan = !is_finite(b.lo - b.lo) || !is_finite(b.hi - b.hi);
-            if (!b.empty() && !nan && !scene_bounds.contains(b)) {
+            if (!is_usable_box(b) && !(b == Bounds3f{})) {
+                return "primitive " + std::to_string(i) + " has an unusable box that is kept";
+            }
+            if (is_usable_box(b) && !scene_bounds.contains(b)) {
                 return "primitive " + std::to_string(i) + " lies outside the scene bounds";
             }
         }

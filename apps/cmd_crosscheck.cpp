@@ -32,17 +32,22 @@ std::string format_err(double e) {
     return std::isnan(e) ? std::string("-") : fmt::format("{:.2e}", e);
 }
 
+/// Set-up ns per ray, or "-" for a method without per-ray set-up.
+std::string format_setup(const xcheck::Row& r) {
+    return r.has_setup ? fmt::format("{:.2f}", r.setup_ns_per_ray) : std::string("-");
+}
+
 void print_table(const std::vector<xcheck::Row>& rows, bool by_set) {
-    std::cout << fmt::format("{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9}\n",
-                             "prim", "method", "prec", by_set ? fmt::format("{:<10} ", "set") : "",
-                             "rays", "agree", "false_hit", "false_miss", "max_rel_t", "med_rel_t",
-                             "ns/test");
+    std::cout << fmt::format(
+        "{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9} {:>9}\n", "prim",
+        "method", "prec", by_set ? fmt::format("{:<10} ", "set") : "", "rays", "agree", "false_hit",
+        "false_miss", "max_rel_t", "med_rel_t", "ns/setup", "ns/test");
     for (const xcheck::Row& r : rows) {
         std::cout << fmt::format(
-            "{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9.2f}\n", r.prim,
+            "{:<9} {:<18} {:<7} {}{:>8} {:>8} {:>9} {:>10} {:>11} {:>11} {:>9} {:>9.2f}\n", r.prim,
             r.method, r.precision, by_set ? fmt::format("{:<10} ", r.set) : "", r.rays, r.agree,
             r.false_hit, r.false_miss, format_err(r.max_rel_t_err), format_err(r.median_rel_t_err),
-            r.ns_per_test);
+            format_setup(r), r.ns_per_test);
     }
 }
 
@@ -60,6 +65,8 @@ void print_json(const std::vector<xcheck::Row>& rows) {
                          {"false_miss", r.false_miss},
                          {"max_rel_t_err", r.max_rel_t_err},
                          {"median_rel_t_err", r.median_rel_t_err},
+                         {"has_setup", r.has_setup},
+                         {"setup_ns_per_ray", r.setup_ns_per_ray},
                          {"ns_per_test", r.ns_per_test}};
         std::cout << j.dump() << (i + 1 < rows.size() ? ",\n" : "\n");
     }
@@ -74,7 +81,9 @@ Command add_crosscheck(CLI::App& root) {
         "crosscheck",
         "Compare intersection methods in float and double with CGAL's exact predicates on seeded "
         "ray sets (random, aimed at edges and vertices, grazing, axis-aligned); prints rays, "
-        "agreements, false hits/misses, relative error of t and ns per test");
+        "agreements, false hits/misses, relative error of t, set-up ns per ray (methods with "
+        "per-ray "
+        "set-up) and ns per test (set-up excluded)");
     std::vector<std::string> prims;
     for (const xcheck::PrimCheck& c : xcheck::prim_checks()) {
         prims.emplace_back(c.prim);

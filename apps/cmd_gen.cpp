@@ -1,9 +1,9 @@
 // rtlab gen: writes a procedural scene (SPD sphere flake and family, stress scenes) as scene JSON
 // with its meshes beside it, or as one mesh file when the output has a mesh extension.
 #include "apps/commands.h"
+#include "base/error.h"
 #include "datasets_gen/generators.h"
 #include "datasets_gen/memory_guard.h"
-#include "base/error.h"
 #include "mesh/mesh_io.h"
 #include "scene/scene_io.h"
 

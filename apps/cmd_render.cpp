@@ -1,6 +1,7 @@
 // rtlab render: the Whitted renderer on any registered structure. Writes a PNG or EXR image
 // (complete or not at all), prints ray statistics on stderr, optionally a JSON file of them, and
 // with --explain the scene's features and the integrator instance that runs.
+#include "accel/spec.h"
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "base/atomic_file.h"
@@ -145,6 +146,7 @@ int run_render(const RenderArgs& a) {
         rs.max_depth = a.depth_opt->count() > 0 ? a.max_depth : 5;
     }
 
+    const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
     const Scene scene = load_scene(a.scene);
     const RenderPlan plan = plan_render(scene, rs);
     if (a.explain) {
@@ -154,7 +156,7 @@ int run_render(const RenderArgs& a) {
         }
     }
     TraceSetup setup;
-    setup.accel = a.accel;
+    setup.accel = accel;
     setup.methods = split_commas(a.method);
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
@@ -199,7 +201,7 @@ int run_render(const RenderArgs& a) {
         nlohmann::json j;
         j["scene"] = a.scene;
         j["output"] = a.output;
-        j["accel"] = a.accel;
+        j["accel"] = accel;
         j["sets"] = tracer.set_methods();
         j["width"] = res.image.width;
         j["height"] = res.image.height;
@@ -244,7 +246,8 @@ Command add_render(CLI::App& root) {
     sub->add_option("-o,--output", a->output,
                     "Output image: .png (8-bit sRGB) or .exr (linear float); written completely "
                     "or not at all");
-    sub->add_option("--accel", a->accel, "Structure (see rtlab list; default bvh:binned)");
+    sub->add_option("--accel", a->accel,
+                    "Structure spec NAME[,key=value]... (see rtlab list; default bvh:binned)");
     sub->add_option("--method", a->method,
                     "Intersection method(s), comma-separated, one per primitive family "
                     "(implicit: closed_form, newton, laguerre; see rtlab list)");

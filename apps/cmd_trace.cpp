@@ -1,5 +1,6 @@
 // rtlab trace: builds one structure per primitive set of a scene, traces a ray file, and prints
 // exactly one JSON object (build and trace time, hits, throughput, optional counts) on stdout.
+#include "accel/spec.h"
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "scene/scene_io.h"
@@ -45,10 +46,11 @@ int run_trace(const TraceArgs& a) {
         threads.emplace(tbb::global_control::max_allowed_parallelism,
                         static_cast<std::size_t>(a.threads));
     }
+    const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
     const Scene scene = load_scene(a.scene);
     const std::vector<Rayf> rays = load_rays(a.rays);
     TraceSetup setup;
-    setup.accel = a.accel;
+    setup.accel = accel;
     setup.methods = split_commas(a.method);
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
@@ -78,7 +80,7 @@ int run_trace(const TraceArgs& a) {
 
     nlohmann::json j;
     j["scene"] = a.scene;
-    j["accel"] = a.accel;
+    j["accel"] = accel;
     std::string methods;
     for (const std::string& m : tracer.set_methods()) {
         methods += (methods.empty() ? "" : ",") + m.substr(m.find('=') + 1);
@@ -134,7 +136,9 @@ Command add_trace(CLI::App& root) {
         ->required();
     sub->add_option("--rays", a->rays, "Ray file (32-byte float32 records, see rtlab rays)")
         ->required();
-    sub->add_option("--accel", a->accel, "Structure (see rtlab accels; default bvh:binned)");
+    sub->add_option("--accel", a->accel,
+                    "Structure spec NAME[,key=value]..., e.g. 'bvh:binned,max_leaf=8' (see rtlab "
+                    "list; default bvh:binned); the JSON names the canonical spec");
     std::string defaults;
     for (const MethodFamily& f : method_families()) {
         defaults += (defaults.empty() ? "" : ", ") + std::string(f.methods.front());

@@ -1,27 +1,66 @@
 // rtlab_bench: one Google Benchmark executable for every suite in bench/.
-// Our own flag, --quick, is removed before Google Benchmark parses the rest.
+// Our own flags, --quick and --accel SPEC, are removed before Google Benchmark parses the rest.
+#include "accel/any_accel.h"
 #include "bench/benchmarks.h"
 
 #include <benchmark/benchmark.h>
 
+#include <exception>
+#include <iostream>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace {
 bool quick = false;
+std::vector<std::string> specs;  // canonical specs named by --accel, in order
+
+constexpr std::string_view own_flags =
+    "rtlab_bench flags (before Google Benchmark's own, listed below):\n"
+    "  --quick        smaller sizes and fewer cases (the whole run in about a minute)\n"
+    "  --accel SPEC   trace and build benchmarks for this structure spec only, e.g.\n"
+    "                 --accel 'bvh:binned,max_leaf=8' (repeatable; default: every registry row\n"
+    "                 but brute, with default parameters; see rtlab list)\n\n";
 }  // namespace
 
 bool rtlab::bench::quick_mode() {
     return quick;
 }
 
+std::vector<std::string> rtlab::bench::bench_specs() {
+    if (!specs.empty()) {
+        return specs;
+    }
+    std::vector<std::string> out;
+    for (const AccelEntry& e : accel_registry()) {
+        if (e.name != "brute") {  // O(N) per ray: the reference for correctness, not a contender
+            out.push_back(default_spec(e).canonical());
+        }
+    }
+    return out;
+}
+
 int main(int argc, char** argv) {
     int kept = 1;
-    for (int i = 1; i < argc; ++i) {
-        if (std::string_view(argv[i]) == "--quick") {
-            quick = true;
-        } else {
-            argv[kept++] = argv[i];
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string_view arg(argv[i]);
+            if (arg == "--quick") {
+                quick = true;
+            } else if (arg == "--accel" && i + 1 < argc) {
+                specs.push_back(rtlab::parse_accel_spec(argv[++i]).canonical());
+            } else if (arg.starts_with("--accel=")) {
+                specs.push_back(rtlab::parse_accel_spec(arg.substr(8)).canonical());
+            } else {
+                if (arg == "--help") {
+                    std::cout << own_flags;
+                }
+                argv[kept++] = argv[i];
+            }
         }
+    } catch (const std::exception& e) {
+        std::cerr << "rtlab_bench: " << e.what() << "\n";
+        return 2;
     }
     argc = kept;
     rtlab::bench::register_intersect_benchmarks();

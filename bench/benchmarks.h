@@ -1,11 +1,18 @@
 #pragma once
 // Each suite registers its benchmarks at run time (from main, after static initialisation).
 
+#include <string>
+#include <vector>
+
 namespace rtlab::bench {
 
 /// True when rtlab_bench was started with --quick: suites register smaller sizes and fewer cases
 /// so the whole executable finishes in under two minutes.
 bool quick_mode();
+
+/// The canonical structure specs the trace and build suites run: those named by --accel, else
+/// every registry row except brute force, with default parameters.
+std::vector<std::string> bench_specs();
 
 /// intersect/<prim>/<method>/<precision>/<ray set>: ns per test and error rates against CGAL.
 void register_intersect_benchmarks();

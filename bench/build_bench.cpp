@@ -55,21 +55,16 @@ void bm_build(benchmark::State& state, std::string accel, int sf, int threads) {
 }  // namespace
 
 void rtlab::bench::register_build_benchmarks() {
-    for (const AccelEntry& e : accel_registry()) {
-        if (e.name == "brute") {
-            continue;
-        }
+    for (const std::string& spec : bench_specs()) {
         for (int sf : build_soup_sizes()) {
             const std::size_t prims = std::size_t{1024} << sf;
             for (int threads : {1, 2}) {
                 if (threads > 1 && quick_mode()) {
                     continue;  // identical to threads:1 for our single-threaded builders
                 }
-                const std::string name = "build/" + std::string(e.name) + "/soup/" +
-                                         std::to_string(prims) +
+                const std::string name = "build/" + spec + "/soup/" + std::to_string(prims) +
                                          "/threads:" + std::to_string(threads);
-                quick_time(benchmark::RegisterBenchmark(name.c_str(), bm_build, std::string(e.name),
-                                                        sf, threads)
+                quick_time(benchmark::RegisterBenchmark(name.c_str(), bm_build, spec, sf, threads)
                                ->Unit(benchmark::kMillisecond)
                                ->UseManualTime());
             }

@@ -53,7 +53,9 @@ def main():
     ap.add_argument("--count", type=int, default=100000, help="rays per kind (default 100000)")
     ap.add_argument("--repeat", type=int, default=3, help="timed runs per case, median (3)")
     ap.add_argument("--threads", type=int, default=0, help="worker threads (default: all)")
-    ap.add_argument("--accels", default="", help="comma list (default: all but brute)")
+    ap.add_argument("--accel", action="append", default=[],
+                    help="structure spec, e.g. 'bvh:binned,max_leaf=8' (repeatable; default: every "
+                         "registered structure but brute, with default parameters)")
     ap.add_argument("--json", help="also write the raw rows as JSON here")
     ap.add_argument("--markdown", help="also write the table as Markdown here")
     args = ap.parse_args()
@@ -61,25 +63,9 @@ def main():
     rtlab = args.rtlab
     if not os.path.exists(rtlab):
         sys.exit(f"compare_structures: {rtlab} not found (build the release preset first)")
-    listing = run([rtlab, "list"]).splitlines()
-    accels = []
-    on = False
-    for line in listing:
-        if line.startswith("structures"):
-            on = True
-            continue
-        if line.startswith("methods"):
-            on = False
-        if on and line.strip():
-            accels.append(line.split()[0])
-    if args.accels:
-        wanted = args.accels.split(",")
-        unknown = [a for a in wanted if a not in accels]
-        if unknown:
-            sys.exit(f"compare_structures: unknown structure(s) {unknown}; known: {accels}")
-        accels = wanted
-    else:
-        accels = [a for a in accels if a != "brute"]
+    listing = json.loads(run([rtlab, "list", "--json"]))
+    accels = args.accel or [s["default_spec"] for s in listing["structures"]
+                            if s["name"] != "brute"]
 
     kinds = ["primary", "shadow", "diffuse"]
     rows = []
@@ -95,7 +81,7 @@ def main():
             run([rtlab, "rays", "--scene", scene, "--kind", kind, "--count", str(args.count),
                  "--seed", "1", "-o", os.path.join(tmp, kind + ".rays")])
         for accel in accels:
-            row = {"accel": accel, "kinds": {}}
+            row = {"kinds": {}}
             for kind in kinds:
                 cmd = [rtlab, "trace", "--scene", scene, "--rays", os.path.join(tmp, kind + ".rays"),
                        "--accel", accel, "--repeat", str(args.repeat), "--stats"]
@@ -105,6 +91,7 @@ def main():
                     cmd.append("--any-hit")
                 out = json.loads(run(cmd))
                 row["kinds"][kind] = out
+                row["accel"] = out["accel"]  # the canonical spec rtlab trace ran
                 row["build_ms"] = out["build_ms"]
                 row["bytes_per_prim"] = out["bytes_per_prim"]
             rows.append(row)

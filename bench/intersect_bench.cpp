@@ -61,30 +61,32 @@ MethodInput<M> make_input(const BenchCases<Shape>& cases, std::uint8_t set) {
 }
 
 /// M's answer for ray i (closest hit over all shapes when in.all; any hit for methods without
-/// t); tests counts the ray-primitive tests made.
+/// t); tests counts the ray-primitive tests made. The ray's set-up (precompute) runs once per
+/// ray: with one shape per ray it is part of the test, over all shapes it is shared by them.
 template <class M>
 inline Truth answer(const MethodInput<M>& in, std::size_t i, std::size_t& tests) {
     using T = typename M::Scalar;
     constexpr bool has_t = IntersectionMethod<M>;
+    const RayDataOf<M> data = precompute_ray<M>(in.rays[i]);
     if (!in.all) {
         ++tests;
         if constexpr (has_t) {
-            const auto h = M::intersect(in.prepared[in.shape[i]], in.rays[i]);
+            const auto h = intersect_with<M>(in.prepared[in.shape[i]], in.rays[i], data);
             return h ? Truth{true, static_cast<double>(h->t)} : Truth{};
         } else {
-            return {M::occluded(in.prepared[in.shape[i]], in.rays[i]), 0.0};
+            return {occluded_with<M>(in.prepared[in.shape[i]], in.rays[i], data), 0.0};
         }
     }
-    Ray<T> ray = in.rays[i];
+    Ray<T> ray = in.rays[i];  // closest hit shrinks tmax; the set-up data stays valid
     Truth a;
     for (const auto& p : in.prepared) {
         ++tests;
         if constexpr (has_t) {
-            if (const auto h = M::intersect(p, ray)) {
+            if (const auto h = intersect_with<M>(p, ray, data)) {
                 a = {true, static_cast<double>(h->t)};
                 ray.tmax = h->t;
             }
-        } else if (M::occluded(p, ray)) {
+        } else if (occluded_with<M>(p, ray, data)) {
             a.hit = true;
             break;
         }

@@ -479,7 +479,7 @@ def synthetic():
             b(f"roots/torus/{f}/{p}", **{"ns/ray": 100.0 + 50 * f_i, "median_rel_t_err": 1e-7,
                                         "max_rel_t_err": 1e-2, "missed_root_rate": 0.001,
                                         "false_hit_rate": 0.0})
-    for a in ("bvh:sweep", "embree:medium"):
+    for a in ("bvh:sweep,max_leaf=4,ct=1,ci=1", "embree:medium"):
         for k in ("primary", "shadow"):
             b(f"trace/{a}/flake/{k}", **{"rays/s": 2e6, "nodes/ray": 20.0, "prims/ray": 3.0,
                                          "build_ms": 5.0, "bytes/prim": 30.0})
@@ -506,7 +506,8 @@ def self_test(plt):
         "intersector table": "### triangle" in text and "| watertight | double |" in text,
         "roots table": "### torus" in text,
         "structures table": "**embree:medium**" in text,
-        "scaling fit k=1": "| build | bvh:sweep/soup/threads:1 | 3 | 1 |" in text,
+        "scaling fit k=1": "| build | bvh:sweep,max_leaf=4,ct=1,ci=1/soup/threads:1 | 3 | 1 |"
+        in text,
         "heat maps skipped": "No heat maps" in text,
         "no failed section": "failed:" not in text,
         "plots written": all(os.path.getsize(p) > 1000 for p in rep.written),

@@ -59,16 +59,12 @@ void bm_trace(benchmark::State& state, std::string accel, std::string scene, Ray
 }  // namespace
 
 void rtlab::bench::register_trace_benchmarks() {
-    for (const AccelEntry& e : accel_registry()) {
-        if (e.name == "brute") {
-            continue;  // O(N) per ray: the reference for correctness, not a contender
-        }
+    for (const std::string& spec : bench_specs()) {
         for (const std::string& scene : trace_scene_names()) {
             for (RayKind k : bench_ray_kinds) {
                 const std::string name =
-                    "trace/" + std::string(e.name) + "/" + scene + "/" + std::string(to_string(k));
-                quick_time(benchmark::RegisterBenchmark(name.c_str(), bm_trace, std::string(e.name),
-                                                        scene, k)
+                    "trace/" + spec + "/" + scene + "/" + std::string(to_string(k));
+                quick_time(benchmark::RegisterBenchmark(name.c_str(), bm_trace, spec, scene, k)
                                ->Unit(benchmark::kMillisecond)
                                ->UseRealTime());
             }

@@ -13,8 +13,8 @@ namespace rtlab::bench {
 
 namespace {
 
-// The scene without the objects whose material is called `material` (meshes, spheres and
-// polygons; the flake's objects are of no other type). Keeps order, camera, lights, materials.
+// The scene without the objects whose material is called `material`. Keeps order, camera,
+// lights, materials.
 Scene without_material(const Scene& s, std::string_view material) {
     const int drop = s.find_material(material);
     Scene out;
@@ -22,29 +22,12 @@ Scene without_material(const Scene& s, std::string_view material) {
     out.background = s.background;
     out.lights = s.lights;
     out.materials = s.materials;
-    const auto keep = [&](std::uint32_t m) {
-        return drop < 0 || m != static_cast<std::uint32_t>(drop);
-    };
     for (const ObjectRef& r : s.order) {
-        switch (r.type) {
-        case PrimType::sphere:
-            if (keep(s.spheres[r.index].material)) {
-                out.add(s.spheres[r.index]);
+        visit_object(s, r, [&]<class P>(const auto& o) {
+            if (drop < 0 || o.material != static_cast<std::uint32_t>(drop)) {
+                out.add(o);
             }
-            break;
-        case PrimType::mesh:
-            if (keep(s.meshes[r.index].material)) {
-                out.add(s.meshes[r.index]);
-            }
-            break;
-        case PrimType::polygon:
-            if (keep(s.polygons[r.index].material)) {
-                out.add(s.polygons[r.index]);
-            }
-            break;
-        default:
-            throw std::invalid_argument("without_material: only spheres, meshes and polygons");
-        }
+        });
     }
     return out;
 }

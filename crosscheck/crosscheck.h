@@ -34,7 +34,9 @@ struct Row {
     std::size_t false_miss = 0;   ///< method missed, oracle says hit
     double max_rel_t_err = 0;     ///< over rays both call a hit; NaN when the method has no t
     double median_rel_t_err = 0;  ///< same, median
-    double ns_per_test = 0;       ///< wall time of one ray-primitive test, single thread
+    double ns_per_test = 0;       ///< one ray-primitive test on set-up ray data, single thread
+    bool has_setup = false;       ///< the method has per-ray set-up (precompute)
+    double setup_ns_per_ray = 0;  ///< its set-up per ray, single thread (0 without set-up)
 };
 
 /// One primitive kind's checker.

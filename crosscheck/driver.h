@@ -2,12 +2,14 @@
 // The plumbing every checker shares: the seeded float generator and ray-set helpers of the box and
 // polygon checks, the method selection (wanted names, float then double), the timed runs of a
 // method over oracle-judged samples, and the assembly of the "all" row and the per-set rows.
+// Timing is split: the per-ray set-up (precompute) of all rays, then the tests on the set-up data.
 // Each checker keeps its own shapes, ray sets and oracle; shapes reach a method through a
 // `convert(shape_or_case, std::type_identity<T>{})` callable that returns the shape in scalar T.
 
 #include "crosscheck/accumulator.h"
 #include "crosscheck/crosscheck.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 #include "intersect/ray.h"
 #include "intersect/vec.h"
 
@@ -177,6 +179,49 @@ void run_wanted(const std::vector<std::string>& wanted,
     }
 }
 
+/// Wall time in ns per item of f(), which handles `items` items: repeated until 20 ms have passed
+/// (at most 1000 times) so short passes still give a stable figure.
+template <class F>
+double ns_per_item(const F& f, std::size_t items) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    std::size_t passes = 0;
+    do {
+        f();
+        ++passes;
+    } while (Clock::now() - start < std::chrono::milliseconds(20) && passes < 1000);
+    return std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
+           static_cast<double>(std::max<std::size_t>(1, passes * items));
+}
+
+/// The timing of a method's per-ray set-up over some rays.
+struct SetupTiming {
+    bool has_setup = false;  ///< the method has a precompute step
+    double ns_per_ray = 0;   ///< its single-thread time per ray (0 without set-up)
+    std::size_t rays = 0;    ///< rays set up
+};
+
+/// precompute_ray<M>(rays[i]) for every i, and (for methods with set-up) its time per ray.
+template <class M>
+std::vector<RayDataOf<M>> precompute_all(const std::vector<Ray<typename M::Scalar>>& rays,
+                                         SetupTiming& timing) {
+    std::vector<RayDataOf<M>> data;
+    data.reserve(rays.size());
+    const auto pass = [&] {
+        data.clear();  // keeps the capacity: no allocation inside the timed pass
+        for (const Ray<typename M::Scalar>& r : rays) {
+            data.push_back(precompute_ray<M>(r));
+        }
+    };
+    timing = {HasRayData<M>, 0.0, rays.size()};
+    if constexpr (HasRayData<M>) {
+        timing.ns_per_ray = ns_per_item(pass, rays.size());
+    } else {
+        pass();
+    }
+    return data;
+}
+
 /// Collects one method's per-set accumulators and timings, then emits the "all" row followed
 /// (with by_set) by one row per set, in the order the sets were added.
 class MethodRows {
@@ -190,42 +235,61 @@ public:
         , by_set_(by_set)
         , all_(has_t) {}
 
-    /// One set: its accumulator, the wall time of its timed pass and the tests that pass made.
-    void add_set(const Accumulator& acc, const std::string& set, double ns, std::size_t tests) {
+    /// One set: its accumulator, the wall time of its test pass and the tests that pass made,
+    /// and the set-up timing of its rays.
+    void add_set(const Accumulator& acc,
+                 const std::string& set,
+                 double ns,
+                 std::size_t tests,
+                 const SetupTiming& setup) {
         all_.merge(acc);
         all_ns_ += ns;
         all_tests_ += tests;
+        all_setup_ns_ += setup.ns_per_ray * static_cast<double>(setup.rays);
+        all_setup_rays_ += setup.rays;
+        has_setup_ = setup.has_setup;
         if (by_set_) {
-            set_rows_.push_back(acc.row(prim_, method_, precision_, set,
-                                        tests ? ns / static_cast<double>(tests) : 0.0));
+            set_rows_.push_back(with_setup(acc.row(prim_, method_, precision_, set, per(ns, tests)),
+                                           setup.ns_per_ray));
         }
     }
 
     /// Appends the "all" row and the per-set rows to rows.
     void emit(std::vector<Row>& rows) const {
-        rows.push_back(all_.row(prim_, method_, precision_, "all",
-                                all_tests_ ? all_ns_ / static_cast<double>(all_tests_) : 0.0));
+        rows.push_back(
+            with_setup(all_.row(prim_, method_, precision_, "all", per(all_ns_, all_tests_)),
+                       per(all_setup_ns_, all_setup_rays_)));
         rows.insert(rows.end(), set_rows_.begin(), set_rows_.end());
     }
 
 private:
+    static double per(double ns, std::size_t n) { return n ? ns / static_cast<double>(n) : 0.0; }
+    Row with_setup(Row r, double setup_ns_per_ray) const {
+        r.has_setup = has_setup_;
+        r.setup_ns_per_ray = setup_ns_per_ray;
+        return r;
+    }
+
     std::string prim_, method_, precision_;
     bool by_set_;
     Accumulator all_;
-    double all_ns_ = 0;
-    std::size_t all_tests_ = 0;
+    double all_ns_ = 0, all_setup_ns_ = 0;
+    std::size_t all_tests_ = 0, all_setup_rays_ = 0;
+    bool has_setup_ = false;
     std::vector<Row> set_rows_;
 };
 
-/// Wall time in ns of one single-threaded pass of M::intersect(prepared[i], rays[i]) over all i;
-/// the t of the hits goes to a volatile sink so the pass is not optimised away.
+/// Wall time in ns of one single-threaded pass of intersect_with<M>(prepared[i], rays[i],
+/// data[i]) over all i (set-up excluded); the t of the hits goes to a volatile sink so the pass
+/// is not optimised away.
 template <class M>
 double time_pass(const std::vector<typename M::Prepared>& prepared,
-                 const std::vector<Ray<typename M::Scalar>>& rays) {
+                 const std::vector<Ray<typename M::Scalar>>& rays,
+                 const std::vector<RayDataOf<M>>& data) {
     const auto start = std::chrono::steady_clock::now();
     double sink = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        if (const auto hit = M::intersect(prepared[i], rays[i])) {
+        if (const auto hit = intersect_with<M>(prepared[i], rays[i], data[i])) {
             sink += static_cast<double>(hit->t);
         }
     }
@@ -257,19 +321,22 @@ void run_case_sets(std::string_view prim,
             prepared.push_back(M::prepare(convert(c, std::type_identity<T>{})));
             rays.push_back(static_cast<Ray<T>>(c.ray));
         }
+        SetupTiming setup;
+        const std::vector<RayDataOf<M>> data = precompute_all<M>(rays, setup);
         Accumulator acc;
         for (std::size_t i = 0; i < rays.size(); ++i) {
-            const auto hit = M::intersect(prepared[i], rays[i]);
+            const auto hit = intersect_with<M>(prepared[i], rays[i], data[i]);
             acc.add(hit.has_value(), set.oracle[i].hit, hit ? static_cast<double>(hit->t) : 0.0,
                     set.oracle[i].t);
         }
-        out.add_set(acc, set.name, time_pass<M>(prepared, rays), rays.size());
+        out.add_set(acc, set.name, time_pass<M>(prepared, rays, data), rays.size(), setup);
     }
     out.emit(rows);
 }
 
-/// Runs method M on every sample of a workload: timed single-threaded (repeated for at least
-/// 20 ms), then compared with the truth; rows "all" and (with opt.by_set) one per set name.
+/// Runs method M on every sample of a workload: set-up and tests timed separately,
+/// single-threaded (each repeated for at least 20 ms), then compared with the truth; rows "all"
+/// and (with opt.by_set) one per set name.
 /// convert(shape, std::type_identity<T>{}) gives the shape in T.
 template <class M, class Shape, std::size_t NSets, class Convert>
 void run_workload_method(std::string_view prim,
@@ -289,19 +356,16 @@ void run_workload_method(std::string_view prim,
     for (const Sample& s : w.samples) {
         rays.push_back(static_cast<Ray<T>>(s.ray));
     }
+    SetupTiming setup;
+    const std::vector<RayDataOf<M>> data = precompute_all<M>(rays, setup);
     std::vector<std::optional<PrimHit<T>>> res(rays.size());
-    // Repeat until 20 ms have passed so short runs still give a stable ns/test.
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    std::size_t passes = 0;
-    do {
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            res[i] = M::intersect(prepared[w.samples[i].shape], rays[i]);
-        }
-        ++passes;
-    } while (Clock::now() - start < std::chrono::milliseconds(20) && passes < 1000);
-    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count() /
-                      static_cast<double>(std::max<std::size_t>(1, passes * rays.size()));
+    const double ns = ns_per_item(
+        [&] {
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                res[i] = intersect_with<M>(prepared[w.samples[i].shape], rays[i], data[i]);
+            }
+        },
+        rays.size());
 
     std::array<Accumulator, NSets> per_set;
     for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -315,10 +379,15 @@ void run_workload_method(std::string_view prim,
     }
     const std::string method(M::name);
     const std::string precision = precision_name<T>();
-    rows.push_back(all.row(std::string(prim), method, precision, "all", ns));
+    const auto finish = [&](Row r) {
+        r.has_setup = setup.has_setup;
+        r.setup_ns_per_ray = setup.ns_per_ray;
+        rows.push_back(std::move(r));
+    };
+    finish(all.row(std::string(prim), method, precision, "all", ns));
     if (opt.by_set) {
         for (std::size_t s = 0; s < NSets; ++s) {
-            rows.push_back(per_set[s].row(std::string(prim), method, precision, set_names[s], ns));
+            finish(per_set[s].row(std::string(prim), method, precision, set_names[s], ns));
         }
     }
 }

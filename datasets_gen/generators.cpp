@@ -1,11 +1,12 @@
 // The generator registry, size and memory checks, and flattening a scene into one mesh.
 #include "datasets_gen/generators.h"
 
+#include "base/error.h"
 #include "datasets_gen/memory_guard.h"
 #include "datasets_gen/scene_parts.h"
-#include "base/error.h"
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rtlab::gen {
@@ -67,39 +68,50 @@ Scene generate(std::string_view name, const GenOptions& o) {
     return generate(*g, o);
 }
 
-TriangleMesh scene_to_mesh(const Scene& s, const SphereTess& tess) {
-    if (!s.boxes.empty() || !s.obbs.empty() || !s.implicits.empty()) {
-        throw Error("scene_to_mesh: boxes, oriented boxes and implicit surfaces are not supported");
+namespace {
+
+// Appends a polygon as a fan around its vertex centroid.
+void append_polygon(TriangleMesh& out, const std::vector<Vec3f>& v) {
+    Vec3d mid;
+    for (const Vec3f& p : v) {
+        mid += Vec3d(p);
     }
+    mid = mid / static_cast<double>(v.size());
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    out.positions.insert(out.positions.end(), v.begin(), v.end());
+    out.positions.push_back(Vec3f(mid));
+    const auto n = static_cast<std::uint32_t>(v.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        out.triangles.push_back({base + n, base + i, base + (i + 1) % n});
+    }
+}
+
+// Appends object o as triangles; false when its type has no tessellation.
+template <class O>
+bool append_object(TriangleMesh& out, const O& o, const SphereTess& tess) {
+    if constexpr (std::is_same_v<O, MeshObject>) {
+        append_mesh(out, o.mesh);
+    } else if constexpr (std::is_same_v<O, SphereObject>) {
+        append_sphere(out, Vec3d(o.center), static_cast<double>(o.radius), tess);
+    } else if constexpr (std::is_same_v<O, PolygonObject>) {
+        append_polygon(out, o.vertices);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TriangleMesh scene_to_mesh(const Scene& s, const SphereTess& tess) {
     TriangleMesh out;
     for (const ObjectRef& r : s.order) {
-        switch (r.type) {
-        case PrimType::mesh:
-            append_mesh(out, s.meshes[r.index].mesh);
-            break;
-        case PrimType::sphere: {
-            const SphereObject& sp = s.spheres[r.index];
-            append_sphere(out, Vec3d(sp.center), static_cast<double>(sp.radius), tess);
-            break;
-        }
-        case PrimType::polygon: {
-            const std::vector<Vec3f>& v = s.polygons[r.index].vertices;
-            Vec3d mid;
-            for (const Vec3f& p : v) {
-                mid += Vec3d(p);
-            }
-            mid = mid / static_cast<double>(v.size());
-            const auto base = static_cast<std::uint32_t>(out.positions.size());
-            out.positions.insert(out.positions.end(), v.begin(), v.end());
-            out.positions.push_back(Vec3f(mid));
-            const auto n = static_cast<std::uint32_t>(v.size());
-            for (std::uint32_t i = 0; i < n; ++i) {
-                out.triangles.push_back({base + n, base + i, base + (i + 1) % n});
-            }
-            break;
-        }
-        default:
-            break;
+        const bool done =
+            visit_object(s, r, [&]<class P>(const auto& o) { return append_object(out, o, tess); });
+        if (!done) {
+            throw Error(
+                "scene_to_mesh: boxes, oriented boxes and implicit surfaces are not "
+                "supported");
         }
     }
     return out;

@@ -7,16 +7,22 @@
 // `intersect(prepared, ray, ray_data)` / `occluded(prepared, ray, ray_data)`. Callers that test
 // one ray against many primitives (traversal, benchmarks) call precompute once per ray through
 // precompute_ray<M>() and then intersect_with<M>() / occluded_with<M>(); methods without set-up
-// get an empty NoRayData and the two-argument calls.
+// get an empty NoRayData and the two-argument calls. RayData depends on the ray's origin and
+// direction only, never on its window [tmin, tmax], so it stays valid while a closest-hit
+// traversal shrinks tmax; with it, every answer is bit-identical to the two-argument call.
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
 #include "intersect/ray.h"
 
+#include <array>
 #include <concepts>
+#include <cstddef>
 #include <optional>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 
 namespace rtlab {
 
@@ -105,6 +111,38 @@ template <class List, class F>
 void for_each_type(F&& f) {
     [&]<class... Ms>(std::tuple<Ms...>*) {
         (f.template operator()<Ms>(), ...);
+    }(static_cast<List*>(nullptr));
+}
+
+namespace detail {
+template <class List>
+struct IntersectorsOf;
+template <class... Ms>
+struct IntersectorsOf<std::tuple<Ms...>> {
+    using type = decltype(std::tuple_cat(
+        std::declval<
+            std::conditional_t<IntersectionMethod<Ms>, std::tuple<Ms>, std::tuple<>>>()...));
+};
+}  // namespace detail
+
+/// The methods of the std::tuple list List that report t (satisfy IntersectionMethod), in order.
+template <class List>
+using IntersectorsOf = typename detail::IntersectorsOf<List>::type;
+
+/// True when no two methods of the std::tuple list List share a name (names select methods on
+/// the command line and label every output row).
+template <class List>
+consteval bool names_unique() {
+    return []<class... Ms>(std::tuple<Ms...>*) {
+        const std::array<std::string_view, sizeof...(Ms)> names{Ms::name...};
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            for (std::size_t j = i + 1; j < names.size(); ++j) {
+                if (names[i] == names[j]) {
+                    return false;
+                }
+            }
+        }
+        return true;
     }(static_cast<List*>(nullptr));
 }
 

@@ -76,21 +76,20 @@ inline void exit_solid(const TraceContext& c, Hit& hit, const Rayf& ray) {
     const ObjectRef o = c.scene.order[locate_primitive(c.base, hit.prim).object];
     Vec3f org = ray.org;
     Vec3f dir = ray.dir;
-    Vec3f lo;
-    Vec3f hi;
-    if (o.type == PrimType::box) {
-        lo = c.scene.boxes[o.index].bounds.lo;
-        hi = c.scene.boxes[o.index].bounds.hi;
-    } else if (o.type == PrimType::obb) {
-        const ObbObject& b = c.scene.obbs[o.index];
-        const Vec3f rel = org - b.center;
-        org = {dot(rel, b.axes[0]), dot(rel, b.axes[1]), dot(rel, b.axes[2])};
-        dir = {dot(dir, b.axes[0]), dot(dir, b.axes[1]), dot(dir, b.axes[2])};
-        lo = -b.half;
-        hi = b.half;
-    } else {
+    // The solid's box in its own frame, with org and dir moved into it; nullopt for non-solids.
+    const std::optional<Bounds3f> box =
+        visit_object(c.scene, o, [&]<class P>(const auto& obj) -> std::optional<Bounds3f> {
+            if constexpr (requires { P::solid_frame(obj, org, dir); }) {
+                return P::solid_frame(obj, org, dir);
+            } else {
+                return std::nullopt;
+            }
+        });
+    if (!box) {
         return;
     }
+    const Vec3f lo = box->lo;
+    const Vec3f hi = box->hi;
     float t_far = ray.tmax;
     for (std::size_t a = 0; a < 3; ++a) {
         const float inv = 1.0f / dir[a];

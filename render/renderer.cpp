@@ -46,17 +46,11 @@ constexpr std::array<TraceFn, 16> trace_table = make_table(std::make_index_seque
 // Materials used by objects, in material order.
 std::vector<bool> used_materials(const Scene& s) {
     std::vector<bool> used(s.materials.size(), false);
-    const auto mark = [&](const auto& objects) {
-        for (const auto& o : objects) {
+    for_each_type<PrimTypes>([&]<class P>() {
+        for (const auto& o : P::objects(s)) {
             used[o.material] = true;
         }
-    };
-    mark(s.spheres);
-    mark(s.meshes);
-    mark(s.polygons);
-    mark(s.boxes);
-    mark(s.obbs);
-    mark(s.implicits);
+    });
     return used;
 }
 
@@ -72,21 +66,7 @@ std::string first_material(const Scene& s, const std::vector<bool>& used, Pred p
 }
 
 std::size_t object_count(const Scene& s, PrimType t) {
-    switch (t) {
-    case PrimType::sphere:
-        return s.spheres.size();
-    case PrimType::mesh:
-        return s.meshes.size();
-    case PrimType::polygon:
-        return s.polygons.size();
-    case PrimType::box:
-        return s.boxes.size();
-    case PrimType::obb:
-        return s.obbs.size();
-    case PrimType::implicit:
-        return s.implicits.size();
-    }
-    return 0;
+    return visit_prim_type(t, [&]<class P>() { return P::objects(s).size(); });
 }
 
 void check_settings(const RenderSettings& r) {
@@ -291,32 +271,12 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
     }
 
     const std::vector<std::uint32_t> base = primitive_id_base(s);
-    std::vector<std::uint32_t> object_material;
-    object_material.reserve(s.order.size());
+    std::vector<std::uint32_t> materials;
+    materials.reserve(s.order.size());
     for (const ObjectRef& o : s.order) {
-        switch (o.type) {
-        case PrimType::sphere:
-            object_material.push_back(s.spheres[o.index].material);
-            break;
-        case PrimType::mesh:
-            object_material.push_back(s.meshes[o.index].material);
-            break;
-        case PrimType::polygon:
-            object_material.push_back(s.polygons[o.index].material);
-            break;
-        case PrimType::box:
-            object_material.push_back(s.boxes[o.index].material);
-            break;
-        case PrimType::obb:
-            object_material.push_back(s.obbs[o.index].material);
-            break;
-        case PrimType::implicit:
-            object_material.push_back(s.implicits[o.index].material);
-            break;
-        }
+        materials.push_back(object_material(s, o));
     }
-    const TraceContext ctx{s,         tracer,   base,      object_material,
-                           r.fresnel, r.offset, r.epsilon, r.max_depth};
+    const TraceContext ctx{s, tracer, base, materials, r.fresnel, r.offset, r.epsilon, r.max_depth};
     const TraceFn trace = trace_table[(plan.shadows ? 1u : 0u) | (plan.reflection ? 2u : 0u) |
                                       (plan.refraction ? 4u : 0u) | (plan.textures ? 8u : 0u)];
 

@@ -3,14 +3,23 @@
 // order of the scene file; global primitive ids follow that order (see primitive_id_base).
 
 #include "intersect/bounds.h"
+#include "intersect/method.h"
 #include "intersect/vec.h"
-#include "mesh/triangle_mesh.h"
+#include "scene/prim_box.h"
+#include "scene/prim_implicit.h"
+#include "scene/prim_mesh.h"
+#include "scene/prim_obb.h"
+#include "scene/prim_polygon.h"
+#include "scene/prim_sphere.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace rtlab {
@@ -69,72 +78,81 @@ struct Material {
     friend bool operator==(const Material&, const Material&) = default;
 };
 
-/// Primitive types a scene can hold.
+/// Primitive types a scene can hold, in the order of the PrimTypes table below.
 enum class PrimType : std::uint8_t { sphere, mesh, polygon, box, obb, implicit };
 
+/// The primitive type table: one entry per PrimType, in enumerator order. An entry is a stateless
+/// struct in its own header (scene/prim_*.h) holding everything the code knows about the type:
+/// `Object` (its scene object), `name` (as in scene files), `objects(scene)` (its set in Scene),
+/// `count(o)` (global primitives per object), `bounds(o)` and `prim_bounds(o, local)`,
+/// `shapes(o, first_id, emit)` (world shapes for the tracer), `normal(o, local, p)` (unnormalised
+/// surface normal for the renderer), `read`/`write`/`check` (JSON through scene_io's reader,
+/// writer and path) and, for solids only, `solid_frame(o, org, dir)`. Code that depends on the
+/// type iterates this table (for_each_type) or dispatches through visit_prim_type/visit_object.
+using PrimTypes = std::tuple<SpherePrim, MeshPrim, PolygonPrim, BoxPrim, ObbPrim, ImplicitPrim>;
+
 /// Number of primitive types.
-inline constexpr std::size_t prim_type_count = 6;
+inline constexpr std::size_t prim_type_count = std::tuple_size_v<PrimTypes>;
 
 /// Lower-case name of a primitive type as used in scene files ("sphere", "mesh", ...).
 std::string_view to_string(PrimType t);
 
-/// A sphere object.
-struct SphereObject {
-    Vec3f center;
-    float radius = 1;  ///< > 0
-    std::uint32_t material = 0;
-    friend bool operator==(const SphereObject&, const SphereObject&) = default;
-};
+namespace detail {
 
-/// A triangle mesh object; `file` is where it came from (relative to the scene file), may be empty.
-struct MeshObject {
-    TriangleMesh mesh;
-    std::string file;
-    std::uint32_t material = 0;
-    friend bool operator==(const MeshObject&, const MeshObject&) = default;
-};
+/// Position of the entry whose Object is O in the list Ps (sizeof...(Ps) when there is none).
+template <class O, class... Ps>
+constexpr std::size_t object_index(std::tuple<Ps...>*) {
+    constexpr bool match[] = {std::is_same_v<O, typename Ps::Object>...};
+    for (std::size_t i = 0; i < sizeof...(Ps); ++i) {
+        if (match[i]) {
+            return i;
+        }
+    }
+    return sizeof...(Ps);
+}
 
-/// A planar polygon (>= 3 vertices, assumed planar; may be concave), one primitive.
-struct PolygonObject {
-    std::vector<Vec3f> vertices;
-    std::uint32_t material = 0;
-    friend bool operator==(const PolygonObject&, const PolygonObject&) = default;
-};
+}  // namespace detail
 
-/// An axis-aligned box (lo <= hi on every axis).
-struct BoxObject {
-    Bounds3f bounds;
-    std::uint32_t material = 0;
-    friend bool operator==(const BoxObject&, const BoxObject&) = default;
-};
+/// Position in PrimTypes of the entry whose Object is O (prim_type_count when there is none).
+template <class O>
+inline constexpr std::size_t prim_index_v =
+    detail::object_index<O>(static_cast<PrimTypes*>(nullptr));
 
-/// An oriented box: centre, three orthonormal axes and the half extent along each (> 0).
-struct ObbObject {
-    Vec3f center;
-    std::array<Vec3f, 3> axes{Vec3f{1, 0, 0}, Vec3f{0, 1, 0}, Vec3f{0, 0, 1}};
-    Vec3f half{1, 1, 1};
-    std::uint32_t material = 0;
-    friend bool operator==(const ObbObject&, const ObbObject&) = default;
-};
+/// The table entry of scene object type O.
+template <class O>
+using PrimOf = std::tuple_element_t<prim_index_v<O>, PrimTypes>;
 
-/// Implicit surfaces f(p - center) = 0.
-enum class ImplicitKind : std::uint8_t {
-    torus,      ///< (|q|^2 + R^2 - r^2)^2 - 4 R^2 (qx^2 + qy^2), axis z; R = major, r = minor
-    tanglecube  ///< s = q/scale: sx^4 - 5 sx^2 + sy^4 - 5 sy^2 + sz^4 - 5 sz^2 + 11.8
-};
+/// The PrimType of table entry P.
+template <class P>
+inline constexpr auto prim_type_v = static_cast<PrimType>(prim_index_v<typename P::Object>);
 
-/// Lower-case name of an implicit surface kind ("torus", "tanglecube").
-std::string_view to_string(ImplicitKind k);
+/// Calls f.template operator()<P>() for the table entry P of type t and returns its result (a
+/// default-constructed result for a t outside the table). Every entry must return the same type.
+template <class F>
+decltype(auto) visit_prim_type(PrimType t, F&& f) {
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+        using R = decltype(f.template operator()<std::tuple_element_t<0, PrimTypes>>());
+        const auto i = static_cast<std::size_t>(t);
+        if constexpr (std::is_void_v<R>) {
+            (void)((i == I ? (f.template operator()<std::tuple_element_t<I, PrimTypes>>(), true)
+                           : false) ||
+                   ...);
+        } else {
+            R out{};
+            (void)((i == I
+                        ? (out = f.template operator()<std::tuple_element_t<I, PrimTypes>>(), true)
+                        : false) ||
+                   ...);
+            return out;
+        }
+    }
+    (std::make_index_sequence<prim_type_count>{});
+}
 
-/// An implicit surface object; which parameters apply depends on the kind.
-struct ImplicitObject {
-    ImplicitKind kind = ImplicitKind::torus;
-    Vec3f center;
-    float major = 1;      ///< torus: distance from the centre to the tube centre, > minor
-    float minor = 0.25f;  ///< torus: tube radius, > 0
-    float scale = 1;      ///< tanglecube: uniform scale, > 0
-    std::uint32_t material = 0;
-    friend bool operator==(const ImplicitObject&, const ImplicitObject&) = default;
+/// A callable made of several lambdas, one overload each (e.g. an `emit` for shapes()).
+template <class... Fs>
+struct Overloaded : Fs... {
+    using Fs::operator()...;
 };
 
 /// One object in file order: its type and its index into that type's set.
@@ -159,23 +177,29 @@ struct Scene {
     std::vector<ImplicitObject> implicits;
     std::vector<ObjectRef> order;
 
-    /// Appends an object to its set and to `order`; returns its reference.
-    ObjectRef add(SphereObject o);
-    /// Appends a mesh object (see add(SphereObject)).
-    ObjectRef add(MeshObject o);
-    /// Appends a polygon object (see add(SphereObject)).
-    ObjectRef add(PolygonObject o);
-    /// Appends a box object (see add(SphereObject)).
-    ObjectRef add(BoxObject o);
-    /// Appends an oriented box object (see add(SphereObject)).
-    ObjectRef add(ObbObject o);
-    /// Appends an implicit surface object (see add(SphereObject)).
-    ObjectRef add(ImplicitObject o);
+    /// Appends an object to its type's set and to `order`; returns its reference.
+    template <class O>
+    requires(prim_index_v<O> < prim_type_count) ObjectRef add(O o) {
+        auto& set = PrimOf<O>::objects(*this);
+        set.push_back(std::move(o));
+        const ObjectRef r{prim_type_v<PrimOf<O>>, static_cast<std::uint32_t>(set.size() - 1)};
+        order.push_back(r);
+        return r;
+    }
     /// Index of the material called `name`, or -1 when there is none.
     int find_material(std::string_view name) const;
 
     friend bool operator==(const Scene&, const Scene&) = default;
 };
+
+/// Calls f.template operator()<P>(object) for the object r refers to, P its table entry, and
+/// returns the result (see visit_prim_type).
+template <class F>
+decltype(auto) visit_object(const Scene& s, ObjectRef r, F&& f) {
+    return visit_prim_type(r.type, [&]<class P>() -> decltype(auto) {
+        return f.template operator()<P>(P::objects(s)[r.index]);
+    });
+}
 
 /// Number of global primitives an object contributes: a mesh's triangle count, 1 otherwise.
 std::uint32_t primitive_count(const Scene& s, ObjectRef r);
@@ -192,6 +216,9 @@ struct PrimitiveLocation {
 
 /// Inverse of primitive_id_base: locates `id` (< bases.back()) by binary search over `bases`.
 PrimitiveLocation locate_primitive(const std::vector<std::uint32_t>& bases, std::uint32_t id);
+
+/// Material index of one object.
+std::uint32_t object_material(const Scene& s, ObjectRef r);
 
 /// Bounding box of one object (an implicit's box encloses its whole surface).
 Bounds3f object_bounds(const Scene& s, ObjectRef r);

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -204,88 +205,11 @@ void check_material_index(std::uint32_t m, const Scene& s, const JsonPath& at) {
     }
 }
 
-/// Orthonormality tolerance for OBB axes: loose enough for axes written with ~6 digits.
-constexpr float obb_axis_tolerance = 1e-4f;
-
 void check_object(const Scene& s, ObjectRef r, const JsonPath& at) {
-    switch (r.type) {
-    case PrimType::sphere: {
-        const SphereObject& o = s.spheres[r.index];
-        if (!is_finite(o.center)) {
-            (at / "center").fail("non-finite vector");
-        }
-        require_positive(o.radius, at / "radius");
+    visit_object(s, r, [&]<class P>(const auto& o) {
+        P::check(o, at);
         check_material_index(o.material, s, at);
-        break;
-    }
-    case PrimType::mesh: {
-        const MeshObject& o = s.meshes[r.index];
-        validate_mesh(o.mesh, at.what() + ": " + std::string("mesh ") + o.file);
-        check_material_index(o.material, s, at);
-        break;
-    }
-    case PrimType::polygon: {
-        const PolygonObject& o = s.polygons[r.index];
-        if (o.vertices.size() < 3) {
-            (at / "vertices").fail("needs at least 3 vertices");
-        }
-        for (std::size_t i = 0; i < o.vertices.size(); ++i) {
-            if (!is_finite(o.vertices[i])) {
-                (at / "vertices")[i].fail("non-finite vector");
-            }
-        }
-        check_material_index(o.material, s, at);
-        break;
-    }
-    case PrimType::box: {
-        const BoxObject& o = s.boxes[r.index];
-        if (!is_finite(o.bounds.lo) || !is_finite(o.bounds.hi)) {
-            at.fail("non-finite corner");
-        }
-        if (o.bounds.empty()) {
-            (at / "max").fail("must be >= min on every axis");
-        }
-        check_material_index(o.material, s, at);
-        break;
-    }
-    case PrimType::obb: {
-        const ObbObject& o = s.obbs[r.index];
-        if (!is_finite(o.center)) {
-            (at / "center").fail("non-finite vector");
-        }
-        if (!(min_component(o.half) > 0)) {
-            (at / "half").fail("components must be > 0");
-        }
-        for (std::size_t i = 0; i < 3; ++i) {
-            if (!(std::abs(length(o.axes[i]) - 1) <= obb_axis_tolerance)) {
-                (at / "axes")[i].fail("must be unit length");
-            }
-            for (std::size_t k = i + 1; k < 3; ++k) {
-                if (!(std::abs(dot(o.axes[i], o.axes[k])) <= obb_axis_tolerance)) {
-                    (at / "axes")[k].fail("must be orthogonal to axes[" + std::to_string(i) + "]");
-                }
-            }
-        }
-        check_material_index(o.material, s, at);
-        break;
-    }
-    case PrimType::implicit: {
-        const ImplicitObject& o = s.implicits[r.index];
-        if (!is_finite(o.center)) {
-            (at / "center").fail("non-finite vector");
-        }
-        if (o.kind == ImplicitKind::torus) {
-            require_positive(o.minor, at / "minor");
-            if (!(o.major > o.minor)) {
-                (at / "major").fail("must be > minor");
-            }
-        } else {
-            require_positive(o.scale, at / "scale");
-        }
-        check_material_index(o.material, s, at);
-        break;
-    }
-    }
+    });
 }
 
 // ---- parsing ----------------------------------------------------------------------------------
@@ -382,92 +306,75 @@ std::uint32_t object_material(const Json& j, const JsonPath& at, Scene& s) {
     return static_cast<std::uint32_t>(index);
 }
 
+/// What a table entry's `read` sees of one object in the JSON document.
+class ObjectReader {
+public:
+    ObjectReader(const Json& j, const JsonPath& at, const std::filesystem::path& base_dir)
+        : j_(j), at_(at), base_dir_(base_dir) {}
+    /// Rejects keys outside `allowed`.
+    void keys(std::initializer_list<std::string_view> allowed) const {
+        check_keys(j_, at_, allowed);
+    }
+    /// Required 3-vector.
+    Vec3f vec3(std::string_view key) const { return to_vec3(required(j_, at_, key), at_ / key); }
+    /// Required number.
+    float number(std::string_view key) const { return to_float(required(j_, at_, key), at_ / key); }
+    /// Required string.
+    std::string string(std::string_view key) const {
+        return to_string_value(required(j_, at_, key), at_ / key);
+    }
+    /// Optional number (out keeps its value when absent).
+    void opt_number(std::string_view key, float& out) const { opt_float(j_, at_, key, out); }
+    /// Optional 3-vector (out keeps its value when absent).
+    void opt_vec3(std::string_view key, Vec3f& out) const { rtlab::opt_vec3(j_, at_, key, out); }
+    /// Required array of 3-vectors; of exactly `count` of them when count > 0.
+    std::vector<Vec3f> vec3_array(std::string_view key, std::size_t count = 0) const {
+        const Json& vs = required(j_, at_, key);
+        const JsonPath vat = at_ / key;
+        if (count == 0 && !vs.is_array()) {
+            vat.fail("must be an array of [x, y, z]");
+        }
+        if (count > 0 && (!vs.is_array() || vs.size() != count)) {
+            vat.fail("must be an array of " + std::to_string(count) + " vectors");
+        }
+        std::vector<Vec3f> out;
+        for (std::size_t i = 0; i < vs.size(); ++i) {
+            out.push_back(to_vec3(vs[i], vat[i]));
+        }
+        return out;
+    }
+    /// The object's path, for errors.
+    const JsonPath& path() const { return at_; }
+    /// Folder that relative file names start from.
+    const std::filesystem::path& base_dir() const { return base_dir_; }
+
+private:
+    const Json& j_;
+    const JsonPath& at_;
+    const std::filesystem::path& base_dir_;
+};
+
 void parse_object(const Json& j,
                   const JsonPath& at,
                   const std::filesystem::path& base_dir,
                   Scene& s) {
     require_object(j, at);
     const std::string type = to_string_value(required(j, at, "type"), at / "type");
-    ObjectRef r;
-    if (type == "sphere") {
-        check_keys(j, at, {"type", "material", "center", "radius"});
-        SphereObject o;
-        o.center = to_vec3(required(j, at, "center"), at / "center");
-        o.radius = to_float(required(j, at, "radius"), at / "radius");
-        require_positive(o.radius, at / "radius");
-        o.material = object_material(j, at, s);
-        r = s.add(o);
-    } else if (type == "mesh") {
-        check_keys(j, at, {"type", "material", "file"});
-        MeshObject o;
-        o.file = to_string_value(required(j, at, "file"), at / "file");
-        if (o.file.empty()) {
-            (at / "file").fail("must not be empty");
+    std::optional<ObjectRef> r;
+    std::string names;
+    for_each_type<PrimTypes>([&]<class P>() {
+        names += (names.empty() ? "" : ", ") + std::string(P::name);
+        if (!r && type == P::name) {
+            ObjectReader in(j, at, base_dir);
+            typename P::Object o = P::read(in);
+            o.material = object_material(j, at, s);
+            r = s.add(std::move(o));
         }
-        try {
-            o.mesh = load_mesh(base_dir / o.file);
-        } catch (const Error& e) {
-            (at / "file").fail(e.what());
-        }
-        o.material = object_material(j, at, s);
-        r = s.add(std::move(o));
-    } else if (type == "polygon") {
-        check_keys(j, at, {"type", "material", "vertices"});
-        PolygonObject o;
-        const Json& vs = required(j, at, "vertices");
-        const JsonPath vat = at / "vertices";
-        if (!vs.is_array()) {
-            vat.fail("must be an array of [x, y, z]");
-        }
-        for (std::size_t i = 0; i < vs.size(); ++i) {
-            o.vertices.push_back(to_vec3(vs[i], vat[i]));
-        }
-        o.material = object_material(j, at, s);
-        r = s.add(std::move(o));
-    } else if (type == "box") {
-        check_keys(j, at, {"type", "material", "min", "max"});
-        BoxObject o;
-        o.bounds.lo = to_vec3(required(j, at, "min"), at / "min");
-        o.bounds.hi = to_vec3(required(j, at, "max"), at / "max");
-        o.material = object_material(j, at, s);
-        r = s.add(o);
-    } else if (type == "obb") {
-        check_keys(j, at, {"type", "material", "center", "axes", "half"});
-        ObbObject o;
-        o.center = to_vec3(required(j, at, "center"), at / "center");
-        const Json& axes = required(j, at, "axes");
-        if (!axes.is_array() || axes.size() != 3) {
-            (at / "axes").fail("must be an array of 3 vectors");
-        }
-        for (std::size_t i = 0; i < 3; ++i) {
-            o.axes[i] = to_vec3(axes[i], (at / "axes")[i]);
-        }
-        o.half = to_vec3(required(j, at, "half"), at / "half");
-        o.material = object_material(j, at, s);
-        r = s.add(o);
-    } else if (type == "implicit") {
-        ImplicitObject o;
-        const std::string surface = to_string_value(required(j, at, "surface"), at / "surface");
-        if (surface == "torus") {
-            check_keys(j, at, {"type", "material", "surface", "center", "major", "minor"});
-            o.kind = ImplicitKind::torus;
-            opt_float(j, at, "major", o.major);
-            opt_float(j, at, "minor", o.minor);
-        } else if (surface == "tanglecube") {
-            check_keys(j, at, {"type", "material", "surface", "center", "scale"});
-            o.kind = ImplicitKind::tanglecube;
-            opt_float(j, at, "scale", o.scale);
-        } else {
-            (at / "surface").fail("unknown implicit surface '" + surface + "' (torus, tanglecube)");
-        }
-        opt_vec3(j, at, "center", o.center);
-        o.material = object_material(j, at, s);
-        r = s.add(o);
-    } else {
-        (at / "type")
-            .fail("unknown object type '" + type + "' (sphere, mesh, polygon, box, obb, implicit)");
+    });
+    if (!r) {
+        (at / "type").fail("unknown object type '" + type + "' (" + names + ")");
     }
-    check_object(s, r, at);
+    check_object(s, *r, at);
 }
 
 std::string read_text(const std::filesystem::path& path) {
@@ -531,6 +438,51 @@ void write_atomically(const std::filesystem::path& path, const std::string& text
     }
 }
 
+/// What a table entry's `write` sees of one object being written: JSON fields in call order,
+/// and the mesh files beside the scene file.
+class ObjectWriter {
+public:
+    ObjectWriter(const std::filesystem::path& scene_path, bool write_meshes, std::uint32_t index)
+        : scene_path_(scene_path), write_meshes_(write_meshes), index_(index) {}
+    /// Field `key` = v.
+    void vec3(std::string_view key, const Vec3f& v) { j_[std::string(key)] = vec_json(v); }
+    /// Field `key` = f (shortest decimal form).
+    void number(std::string_view key, float f) { j_[std::string(key)] = tidy(f); }
+    /// Field `key` = text.
+    void string(std::string_view key, const std::string& text) { j_[std::string(key)] = text; }
+    /// Field `key` = array of vectors.
+    void vec3_array(std::string_view key, const std::vector<Vec3f>& vs) {
+        Json a = Json::array();
+        for (const Vec3f& v : vs) {
+            a.push_back(vec_json(v));
+        }
+        j_[std::string(key)] = a;
+    }
+    /// File name a mesh is referenced by: written beside the scene file as
+    /// "<stem>.mesh<index>.ply" with write_meshes, else its own `file` (which must be non-empty).
+    std::string external_mesh(const TriangleMesh& mesh, const std::string& file) const {
+        if (write_meshes_) {
+            const std::string name =
+                scene_path_.stem().string() + ".mesh" + std::to_string(index_) + ".ply";
+            save_mesh(mesh, scene_path_.parent_path() / name);
+            return name;
+        }
+        if (file.empty()) {
+            throw Error(scene_path_.string() + ": meshes[" + std::to_string(index_) +
+                        "] has no file name; save with write_meshes");
+        }
+        return file;
+    }
+    /// The object written so far.
+    const Json& json() const { return j_; }
+
+private:
+    Json j_ = Json::object();
+    const std::filesystem::path& scene_path_;
+    bool write_meshes_;
+    std::uint32_t index_;
+};
+
 }  // namespace
 
 Camera camera_framing(const Bounds3f& b, float fov_deg, int width, int height) {
@@ -571,9 +523,9 @@ void validate_scene(const Scene& s, std::string_view what) {
         }
         check_material(m, root / "materials" / m.name);
     }
-    const std::size_t sizes[prim_type_count] = {s.spheres.size(),  s.meshes.size(),
-                                                s.polygons.size(), s.boxes.size(),
-                                                s.obbs.size(),     s.implicits.size()};
+    std::size_t sizes[prim_type_count] = {};
+    for_each_type<PrimTypes>(
+        [&]<class P>() { sizes[static_cast<std::size_t>(prim_type_v<P>)] = P::objects(s).size(); });
     std::size_t total = 0;
     for (const std::size_t n : sizes) {
         total += n;
@@ -714,71 +666,15 @@ void save_scene(const Scene& s, const std::filesystem::path& path, bool write_me
         }
         doc["materials"][m.name] = jm;
     }
-    // Meshes are written first so a failure leaves the old scene file untouched.
-    std::vector<std::string> mesh_files(s.meshes.size());
-    for (std::size_t i = 0; i < s.meshes.size(); ++i) {
-        if (write_meshes) {
-            mesh_files[i] = path.stem().string() + ".mesh" + std::to_string(i) + ".ply";
-            save_mesh(s.meshes[i].mesh, path.parent_path() / mesh_files[i]);
-        } else if (s.meshes[i].file.empty()) {
-            throw Error(path.string() + ": meshes[" + std::to_string(i) +
-                        "] has no file name; save with write_meshes");
-        } else {
-            mesh_files[i] = s.meshes[i].file;
-        }
-    }
     doc["objects"] = Json::array();
     for (const ObjectRef& r : s.order) {
-        Json o;
-        o["type"] = std::string(to_string(r.type));
-        std::uint32_t material = 0;
-        switch (r.type) {
-        case PrimType::sphere:
-            o["center"] = vec_json(s.spheres[r.index].center);
-            o["radius"] = tidy(s.spheres[r.index].radius);
-            material = s.spheres[r.index].material;
-            break;
-        case PrimType::mesh:
-            o["file"] = mesh_files[r.index];
-            material = s.meshes[r.index].material;
-            break;
-        case PrimType::polygon:
-            o["vertices"] = Json::array();
-            for (const Vec3f& v : s.polygons[r.index].vertices) {
-                o["vertices"].push_back(vec_json(v));
-            }
-            material = s.polygons[r.index].material;
-            break;
-        case PrimType::box:
-            o["min"] = vec_json(s.boxes[r.index].bounds.lo);
-            o["max"] = vec_json(s.boxes[r.index].bounds.hi);
-            material = s.boxes[r.index].material;
-            break;
-        case PrimType::obb: {
-            const ObbObject& b = s.obbs[r.index];
-            o["center"] = vec_json(b.center);
-            o["axes"] =
-                Json::array({vec_json(b.axes[0]), vec_json(b.axes[1]), vec_json(b.axes[2])});
-            o["half"] = vec_json(b.half);
-            material = b.material;
-            break;
-        }
-        case PrimType::implicit: {
-            const ImplicitObject& im = s.implicits[r.index];
-            o["surface"] = std::string(to_string(im.kind));
-            o["center"] = vec_json(im.center);
-            if (im.kind == ImplicitKind::torus) {
-                o["major"] = tidy(im.major);
-                o["minor"] = tidy(im.minor);
-            } else {
-                o["scale"] = tidy(im.scale);
-            }
-            material = im.material;
-            break;
-        }
-        }
-        o["material"] = s.materials[material].name;
-        doc["objects"].push_back(o);
+        ObjectWriter out(path, write_meshes, r.index);
+        out.string("type", std::string(to_string(r.type)));
+        visit_object(s, r, [&]<class P>(const auto& o) {
+            P::write(o, out);
+            out.string("material", s.materials[o.material].name);
+        });
+        doc["objects"].push_back(out.json());
     }
     write_atomically(path, doc.dump(2) + "\n");
 }

@@ -130,37 +130,28 @@ inline std::vector<Hit> trace_all(const SceneTracer& tracer,
     return hits;
 }
 
-/// True for the triangle methods that answer hit/no-hit only.
-inline bool is_occlusion_only(std::string_view method) {
-    return method == "segura_feito";
-}
-
-/// Rays that no triangle of `mesh` stops when each is tested by triangle method `method` (float)
+/// Rays that no triangle of `mesh` stops when each is tested by triangle method M (float)
 /// directly, without boxes or a structure: the method's own leaks, which every structure shares.
-inline std::size_t method_leaks(const TriangleMesh& mesh,
-                                const std::vector<Rayf>& rays,
-                                std::string_view method) {
+/// The ray's set-up is computed once per ray, as traversal does.
+template <class M>
+std::size_t method_leaks(const TriangleMesh& mesh, const std::vector<Rayf>& rays) {
+    std::vector<typename M::Prepared> prims;
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+        const auto c = mesh.corners(i);
+        prims.push_back(M::prepare({c[0], c[1], c[2]}));
+    }
     std::size_t leaks = 0;
-    for_each_triangle_method<float>([&]<class M>() {
-        if (M::name != method) {
-            return;
-        }
-        std::vector<typename M::Prepared> prims;
-        for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-            const auto c = mesh.corners(i);
-            prims.push_back(M::prepare({c[0], c[1], c[2]}));
-        }
-        for (const Rayf& r : rays) {
-            bool hit = false;
-            for (const auto& p : prims) {
-                if (M::occluded(p, r)) {
-                    hit = true;
-                    break;
-                }
+    for (const Rayf& r : rays) {
+        const RayDataOf<M> data = precompute_ray<M>(r);
+        bool hit = false;
+        for (const auto& p : prims) {
+            if (occluded_with<M>(p, r, data)) {
+                hit = true;
+                break;
             }
-            leaks += hit ? 0 : 1;
         }
-    });
+        leaks += hit ? 0 : 1;
+    }
     return leaks;
 }
 

@@ -34,7 +34,7 @@ std::array<std::vector<float>, 3> split_planes(const std::vector<Bounds3f>& boun
                                                const ClipFn& clip) {
     std::array<std::vector<float>, 3> planes;
     for (const AccelEntry& e : accel_registry()) {
-        const AnyAccel a = e.build(BuildInput{bounds, clip});
+        const AnyAccel a = build_accel(default_spec(e), BuildInput{bounds, clip});
         if (const auto* kd = std::get_if<KdTree>(&a)) {
             for (const KdNode& n : kd->nodes) {
                 if (!n.is_leaf()) {

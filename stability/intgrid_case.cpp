@@ -4,6 +4,7 @@
 // or square diagonals (the shared edge of a square's two triangles). Half start inside the cube,
 // half outside aimed at it: every ray must hit. Every triangle method x structure x robust on/off.
 #include "datasets_gen/generators.h"
+#include "intersect/triangle/methods.h"
 #include "stability/case_util.h"
 #include "stability/cases.h"
 #include "stability/fixtures.h"
@@ -86,12 +87,13 @@ std::vector<Row> run_intgrid(const Options& opt, const Selection& sel) {
     const float h = scene.meshes[0].mesh.bounds().hi.x;
     const std::vector<Rayf> rays = lattice_rays(h, opt.rays, opt.seed);
     std::vector<Row> rows;
-    for (const std::string_view method :
-         {"moller_trumbore", "badouel", "segura_feito", "watertight"}) {
+    // Every triangle method of the family list, float (occlusion-only ones through any-hit).
+    for_each_type<TriangleMethods<float>>([&]<class M>() {
+        const std::string_view method = M::name;
         if (!selected_method(sel, method)) {
-            continue;
+            return;
         }
-        const std::size_t own = method_leaks(scene.meshes[0].mesh, rays, method);
+        const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
         for (const bool robust : {false, true}) {
             for (const AccelEntry& e : accel_registry()) {
                 if (!selected_method(sel, method) || !selected(sel, e.name, robust)) {
@@ -102,7 +104,7 @@ std::vector<Row> run_intgrid(const Options& opt, const Selection& sel) {
                 setup.methods = {std::string(method)};
                 setup.robust = robust;
                 const SceneTracer tracer(scene, setup);
-                const bool any = is_occlusion_only(method);
+                const bool any = !IntersectionMethod<M>;
                 const Stopwatch sw;
                 const std::vector<Hit> hits = trace_all(tracer, rays, any);
                 const double ns = sw.ns() / static_cast<double>(rays.size());
@@ -117,7 +119,7 @@ std::vector<Row> run_intgrid(const Options& opt, const Selection& sel) {
                     std::string(any ? "any-hit; " : "") + leak_note(leaks, own, robust)));
             }
         }
-    }
+    });
     return rows;
 }
 

@@ -2,6 +2,7 @@
 // closed, vertex-perturbed sphere mesh, in random directions and aimed exactly at vertices and
 // shared edges, must all hit. Every triangle method x every structure x robust on/off, float,
 // traced through SceneTracer (the path `rtlab trace` takes); a ray that hits nothing is a leak.
+#include "intersect/triangle/methods.h"
 #include "intersect/triangle/sphere_mesh.h"
 #include "scene/scene_io.h"
 #include "stability/case_util.h"
@@ -93,12 +94,13 @@ std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
     const Scene scene = mesh_scene(watertight_sphere(opt.seed));
     const std::vector<Rayf> rays = inside_rays(scene.meshes[0].mesh, opt.rays, opt.seed);
     std::vector<Row> rows;
-    for (const std::string_view method :
-         {"moller_trumbore", "badouel", "segura_feito", "watertight"}) {
+    // Every triangle method of the family list, float (occlusion-only ones through any-hit).
+    for_each_type<TriangleMethods<float>>([&]<class M>() {
+        const std::string_view method = M::name;
         if (!selected_method(sel, method)) {
-            continue;
+            return;
         }
-        const std::size_t own = method_leaks(scene.meshes[0].mesh, rays, method);
+        const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
         for (const bool robust : {false, true}) {
             for (const AccelEntry& e : accel_registry()) {
                 if (!selected_method(sel, method) || !selected(sel, e.name, robust)) {
@@ -109,7 +111,7 @@ std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
                 setup.methods = {std::string(method)};
                 setup.robust = robust;
                 const SceneTracer tracer(scene, setup);
-                const bool any = is_occlusion_only(method);
+                const bool any = !IntersectionMethod<M>;
                 const Stopwatch sw;
                 const std::vector<Hit> hits = trace_all(tracer, rays, any);
                 const double ns = sw.ns() / static_cast<double>(rays.size());
@@ -127,7 +129,7 @@ std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
                     "float", rays.size(), leaks, "leaks", ns, note));
             }
         }
-    }
+    });
     return rows;
 }
 

@@ -103,10 +103,27 @@ void check_every_structure(const test::Soup& soup, const std::vector<Rayf>& rays
     const std::vector<Answer> expected = oracle_answers(soup, rays);
     for (const AccelEntry& entry : accel_registry()) {
         CAPTURE(entry.name);
-        const AnyAccel accel = entry.build(soup.input());
+        const AnyAccel accel = build_accel(default_spec(entry), soup.input());
         REQUIRE(accel_validate(accel).empty());
         visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
     }
+}
+
+/// Specs of row e: its defaults, and for each parameter one spec with only that parameter moved
+/// to an extreme of its range (the minimum, or the maximum where the minimum is the default).
+std::vector<AccelSpec> default_and_varied_specs(const AccelEntry& e) {
+    std::vector<AccelSpec> out{default_spec(e)};
+    for (std::size_t i = 0; i < e.params.size(); ++i) {
+        const ParamSpec& p = e.params[i];
+        AccelSpec s = default_spec(e);
+        if (p.kind == ParamKind::choice) {
+            s.values[i] = p.default_value == 0 ? 1 : 0;
+        } else {
+            s.values[i] = p.min != p.default_value ? p.min : p.max;
+        }
+        out.push_back(s);
+    }
+    return out;
 }
 
 }  // namespace
@@ -121,19 +138,23 @@ TEST_CASE("every registered structure agrees with brute force", "[accel][agreeme
     const std::vector<Answer> expected = oracle_answers(soup, rays);
 
     for (const AccelEntry& entry : accel_registry()) {
-        CAPTURE(entry.name);
-        const AnyAccel accel = entry.build(soup.input());
-        REQUIRE(accel_validate(accel).empty());
-        REQUIRE(same_structure(accel, entry.build(soup.input())));
-        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+        for (const AccelSpec& spec : default_and_varied_specs(entry)) {
+            CAPTURE(spec.canonical());
+            const AnyAccel accel = build_accel(spec, soup.input());
+            REQUIRE(accel_validate(accel).empty());
+            REQUIRE(same_structure(accel, build_accel(spec, soup.input())));
+            visit_accel(accel,
+                        [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+        }
     }
 }
 
 TEST_CASE("structures agree on duplicate, zero-size and unusable primitives",
           "[accel][agreement]") {
-    // 40 copies of one box, 30 point boxes at one spot, flat boxes, and an empty box that must
-    // never be offered as a hit. (NaN boxes are covered per structure: BruteForce::validate
-    // rejects them.)
+    // 40 copies of one box, 30 point boxes at one spot, flat boxes, and boxes that fail
+    // is_usable_box (empty, NaN, infinite, half-infinite), which must never be offered.
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
     test::Soup soup;
     for (int i = 0; i < 40; ++i) {
         soup.boxes.push_back({{0.2f, 0.2f, 0.2f}, {0.6f, 0.5f, 0.4f}});
@@ -145,9 +166,38 @@ TEST_CASE("structures agree on duplicate, zero-size and unusable primitives",
         const float x = 0.05f * static_cast<float>(i);
         soup.boxes.push_back({{x, 0, 0}, {x, 1, 1}});
     }
-    soup.boxes.push_back(Bounds3f{});
+    const std::vector<Bounds3f> unusable{
+        Bounds3f{},
+        {{0, 0, 0}, {nan, 1, 1}},
+        {{-inf, -inf, -inf}, {inf, inf, inf}},
+        {{0, 0, 0}, {inf, 1, 1}},
+        {{-inf, 0.2f, 0.2f}, {0.5f, 0.3f, 0.3f}},
+    };
+    const auto first_unusable = static_cast<std::uint32_t>(soup.boxes.size());
+    soup.boxes.insert(soup.boxes.end(), unusable.begin(), unusable.end());
+    for (const Bounds3f& b : unusable) {
+        CHECK_FALSE(is_usable_box(b));
+    }
     const std::vector<Rayf> rays = test::random_rays(soup, 7, 400);
     check_every_structure(soup, rays);
+
+    // One rule for every structure: no unusable primitive is ever offered to a leaf callback.
+    for (const AccelEntry& entry : accel_registry()) {
+        CAPTURE(entry.name);
+        const AnyAccel accel = build_accel(default_spec(entry), soup.input());
+        std::uint32_t offered_unusable = 0;
+        const auto record = [&](std::uint32_t id, const Rayf&) {
+            offered_unusable += id >= first_unusable ? 1u : 0u;
+            return false;
+        };
+        visit_accel(accel, [&](const auto& s) {
+            for (const Rayf& ray : rays) {
+                s.occluded(ray, record);
+                s.template occluded<true>(ray, record);
+            }
+        });
+        CHECK(offered_unusable == 0);
+    }
 }
 
 TEST_CASE("invalid rays are rejected by every structure", "[accel][agreement]") {
@@ -162,7 +212,7 @@ TEST_CASE("invalid rays are rejected by every structure", "[accel][agreement]") 
     };
     for (const AccelEntry& entry : accel_registry()) {
         CAPTURE(entry.name);
-        const AnyAccel accel = entry.build(soup.input());
+        const AnyAccel accel = build_accel(default_spec(entry), soup.input());
         visit_accel(accel, [&](const auto& s) {
             for (const Rayf& ray : bad) {
                 const TraversalStats st = test::check_no_hit(s, soup, ray);

@@ -1,31 +1,38 @@
 // BVH node layout, tree invariants and builder-specific edge cases.
 
-#include "accel/bvh/bvh.h"
-
+#include "accel/any_accel.h"
 #include "support/accel_fixtures.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace rtlab {
 namespace {
 
-constexpr BvhBuilder all_builders[] = {BvhBuilder::median, BvhBuilder::binned_sah,
-                                       BvhBuilder::sweep_sah, BvhBuilder::lbvh};
+/// The names of every BVH row of the registry ("bvh:..."), in registry order.
+std::vector<std::string> bvh_rows() {
+    std::vector<std::string> out;
+    for (const AccelEntry& e : accel_registry()) {
+        if (e.name.starts_with("bvh:")) {
+            out.emplace_back(e.name);
+        }
+    }
+    return out;
+}
 
+/// The BVH of registry row `row` with max_leaf and any further settings (",key=value...").
 Bvh build_with(const std::vector<Bounds3f>& boxes,
-               BvhBuilder b,
+               const std::string& row,
                std::uint32_t max_leaf = 4,
-               std::uint32_t bins = 16) {
-    Bvh::Config cfg;
-    cfg.builder = b;
-    cfg.max_leaf_size = max_leaf;
-    cfg.bin_count = bins;
-    return Bvh::build({boxes, {}}, cfg);
+               const std::string& more = "") {
+    const std::string spec = row + ",max_leaf=" + std::to_string(max_leaf) + more;
+    return std::get<Bvh>(build_accel(spec, BuildInput{boxes, {}}));
 }
 
 /// Checks what validate() cannot see without the input: every usable box is referenced, every
@@ -81,11 +88,11 @@ TEST_CASE("BvhNode keeps Wald's 32-byte layout", "[accel][bvh]") {
 }
 
 TEST_CASE("every builder gives a valid, tight, deterministic tree", "[accel][bvh]") {
-    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
+    const std::string builder = GENERATE(from_range(bvh_rows()));
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
     const auto count = GENERATE(0u, 1u, 2u, 3u, 17u, 1000u);
     const auto max_leaf = GENERATE(1u, 4u, 8u);
-    CAPTURE(static_cast<int>(builder), static_cast<int>(kind), count, max_leaf);
+    CAPTURE(builder, static_cast<int>(kind), count, max_leaf);
     const test::Soup soup = test::random_soup(kind, 42, count);
     const Bvh bvh = build_with(soup.boxes, builder, max_leaf);
     check_layout(bvh, soup.boxes);
@@ -106,10 +113,10 @@ TEST_CASE("every builder gives a valid, tight, deterministic tree", "[accel][bvh
 
 TEST_CASE("SAH builders beat the median and LBVH trees on the SAH metric", "[accel][bvh]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 9, 2000);
-    const double median = build_with(soup.boxes, BvhBuilder::median).info().sah_cost;
-    const double binned = build_with(soup.boxes, BvhBuilder::binned_sah).info().sah_cost;
-    const double sweep = build_with(soup.boxes, BvhBuilder::sweep_sah).info().sah_cost;
-    const double lbvh = build_with(soup.boxes, BvhBuilder::lbvh).info().sah_cost;
+    const double median = build_with(soup.boxes, "bvh:median").info().sah_cost;
+    const double binned = build_with(soup.boxes, "bvh:binned").info().sah_cost;
+    const double sweep = build_with(soup.boxes, "bvh:sweep").info().sah_cost;
+    const double lbvh = build_with(soup.boxes, "bvh:lbvh").info().sah_cost;
     CAPTURE(median, binned, sweep, lbvh);
     CHECK(sweep <= binned * 1.02);
     CHECK(binned < median);
@@ -118,20 +125,20 @@ TEST_CASE("SAH builders beat the median and LBVH trees on the SAH metric", "[acc
 
 TEST_CASE("binned SAH handles one and two bins", "[accel][bvh]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 5, 300);
-    const auto bins = GENERATE(0u, 1u, 2u, 3u, 64u);
+    const auto bins = GENERATE(1u, 2u, 3u, 64u);
     CAPTURE(bins);
-    const Bvh bvh = build_with(soup.boxes, BvhBuilder::binned_sah, 4, bins);
+    const Bvh bvh = build_with(soup.boxes, "bvh:binned", 4, ",bins=" + std::to_string(bins));
     check_layout(bvh, soup.boxes);
-    CHECK(bvh.config.bin_count == std::max(bins, 1u));
+    CHECK(bvh.config.bin_count == bins);
     if (bins <= 1) {
         // One bin has no split candidate: the builder falls back to the object median.
-        CHECK(bvh.nodes == build_with(soup.boxes, BvhBuilder::median).nodes);
+        CHECK(bvh.nodes == build_with(soup.boxes, "bvh:median").nodes);
     }
 }
 
 TEST_CASE("builders split equal centroids and duplicates by count", "[accel][bvh]") {
-    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
-    CAPTURE(static_cast<int>(builder));
+    const std::string builder = GENERATE(from_range(bvh_rows()));
+    CAPTURE(builder);
     // 100 boxes with one centre: 50 identical, 50 of growing size.
     std::vector<Bounds3f> boxes;
     for (int i = 0; i < 100; ++i) {
@@ -153,11 +160,7 @@ TEST_CASE("LBVH codes: bit interleaving and duplicate codes", "[accel][bvh]") {
         boxes.emplace_back(p);
         boxes.emplace_back(p);
     }
-    Bvh::Config cfg;
-    cfg.builder = BvhBuilder::lbvh;
-    cfg.morton_bits = 2;
-    cfg.max_leaf_size = 2;
-    const Bvh bvh = Bvh::build({boxes, {}}, cfg);
+    const Bvh bvh = build_with(boxes, "bvh:lbvh", 2, ",morton_bits=2");
     check_layout(bvh, boxes);
     // The radix tree over 64 distinct codes is complete: 6 levels above the duplicate pairs.
     CHECK(bvh.info().max_depth == 6);
@@ -175,8 +178,8 @@ TEST_CASE("LBVH codes: bit interleaving and duplicate codes", "[accel][bvh]") {
 TEST_CASE("depth stays within 64 on exponentially spaced primitives", "[accel][bvh]") {
     // Centres at 1.4^i: every SAH split peels off the largest box, which would nest 300 levels
     // deep without the depth guard.
-    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
-    CAPTURE(static_cast<int>(builder));
+    const std::string builder = GENERATE(from_range(bvh_rows()));
+    CAPTURE(builder);
     std::vector<Bounds3f> boxes;
     float x = 1.0f;
     for (int i = 0; i < 250; ++i) {
@@ -189,8 +192,8 @@ TEST_CASE("depth stays within 64 on exponentially spaced primitives", "[accel][b
 }
 
 TEST_CASE("empty, NaN and infinite boxes are never referenced", "[accel][bvh]") {
-    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
-    CAPTURE(static_cast<int>(builder));
+    const std::string builder = GENERATE(from_range(bvh_rows()));
+    CAPTURE(builder);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     std::vector<Bounds3f> boxes{Bounds3f{},
@@ -212,7 +215,7 @@ TEST_CASE("empty, NaN and infinite boxes are never referenced", "[accel][bvh]") 
 
 TEST_CASE("validate reports broken trees", "[accel][bvh]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 8, 50);
-    const Bvh good = build_with(soup.boxes, BvhBuilder::sweep_sah);
+    const Bvh good = build_with(soup.boxes, "bvh:sweep");
     REQUIRE(good.validate().empty());
     Bvh b = good;
     b.prim_ids[0] = b.prim_ids[1];
@@ -232,7 +235,7 @@ TEST_CASE("closest-hit traversal visits the near child first", "[accel][bvh]") {
     // Two separated boxes on x: a ray along +x opens the left leaf first and, having hit it,
     // culls the right one; along -x the other way round.
     const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 1}}};
-    const Bvh bvh = build_with(boxes, BvhBuilder::sweep_sah, 1);
+    const Bvh bvh = build_with(boxes, "bvh:sweep", 1);
     test::Soup soup;
     soup.boxes = boxes;
     for (const float sign : {1.0f, -1.0f}) {
@@ -248,16 +251,20 @@ TEST_CASE("closest-hit traversal visits the near child first", "[accel][bvh]") {
 
 TEST_CASE("info() reports the analytic SAH cost of a two-leaf tree", "[accel][bvh]") {
     // Root [0,3]x[0,1]x[0,1] has area 14, each unit-cube leaf area 6: cost = Ct + Ci * 12 / 14.
-    const auto builder = GENERATE(from_range(std::begin(all_builders), std::end(all_builders)));
-    CAPTURE(static_cast<int>(builder));
+    const std::string builder = GENERATE(from_range(bvh_rows()));
+    CAPTURE(builder);
     const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 1}}};
-    Bvh::Config cfg;
-    cfg.builder = builder;
-    cfg.max_leaf_size = 1;
-    cfg.traversal_cost = 2.0f;
-    cfg.intersection_cost = 3.0f;
-    const AccelInfo info = Bvh::build({boxes, {}}, cfg).info();
-    CHECK(info.sah_cost == Approx(2.0 + 3.0 * 12.0 / 14.0));
+    // Rows without cost parameters (the builder ignores them) report with Ct = Ci = 1.
+    const auto& params = find_accel(builder)->params;
+    const bool has_costs =
+        std::any_of(params.begin(), params.end(), [](const ParamSpec& p) { return p.key == "ct"; });
+    const Bvh bvh = build_with(boxes, builder, 1, has_costs ? ",ct=2,ci=3" : "");
+    const double ct = static_cast<double>(bvh.config.traversal_cost);
+    const double ci = static_cast<double>(bvh.config.intersection_cost);
+    CHECK(ct == (has_costs ? 2.0 : 1.0));
+    CHECK(ci == (has_costs ? 3.0 : 1.0));
+    const AccelInfo info = bvh.info();
+    CHECK(info.sah_cost == Approx(ct + ci * 12.0 / 14.0));
     CHECK(info.nodes == 3);
     CHECK(info.leaves == 2);
     CHECK(info.max_depth == 1);

@@ -1,10 +1,10 @@
 // Procedural scenes: sphere flake geometry against the SPD definition, tessellation counts and
 // closedness, generator counts, determinism and the memory guard.
+#include "base/error.h"
 #include "datasets_gen/generators.h"
 #include "datasets_gen/memory_guard.h"
 #include "datasets_gen/sphere_flake.h"
 #include "datasets_gen/tessellate.h"
-#include "base/error.h"
 #include "mesh/mesh_stats.h"
 #include "scene/scene_io.h"
 

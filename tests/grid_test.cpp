@@ -2,8 +2,7 @@
 // without a clip callback), rays on cell boundaries, the hit beyond the first cell a primitive
 // overlaps, mailboxing, invariants, determinism and traversal counts.
 
-#include "accel/grid/grid.h"
-
+#include "accel/any_accel.h"
 #include "accel/brute_force.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
@@ -13,10 +12,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace rtlab {
 namespace {
+
+/// The grid built by spec ("grid:uniform" with optional ",key=value" settings).
+Grid build_grid(const BuildInput& in, const std::string& spec = "grid:uniform") {
+    return std::get<Grid>(build_accel(spec, in));
+}
 
 /// Rays starting on cell boundary planes of g: lying in the plane, along it, and crossing it.
 std::vector<Rayf> cell_boundary_rays(const Grid& g, std::uint64_t seed, std::size_t count) {
@@ -49,17 +54,16 @@ TEST_CASE("grid resolution follows Woo's rule", "[accel][grid]") {
     // Box 2 x 1 x 1, N = 100, lambda = 4: cbrt(400 / 2) = 5.85 cells per unit.
     std::vector<Bounds3f> boxes(100, Bounds3f{{0, 0, 0}, {0.1f, 0.1f, 0.1f}});
     boxes[0] = {{0, 0, 0}, {2, 1, 1}};
-    const Grid g = Grid::build({boxes, {}});
+    const Grid g = build_grid({boxes, {}});
     CHECK(g.res == std::array<std::uint32_t, 3>{12, 6, 6});
     CHECK(g.cell_start.size() == 12 * 6 * 6 + 1);
     // A flat scene gets one cell across its zero extent and Woo's rule in 2-D over the rest.
     std::vector<Bounds3f> flat(100, Bounds3f{{0, 0, 0}, {1, 1, 0}});
-    const Grid f = Grid::build({flat, {}});
+    const Grid f = build_grid({flat, {}});
     CHECK(f.res == std::array<std::uint32_t, 3>{20, 20, 1});
     // The clamp.
-    GridConfig cfg;
-    cfg.max_res = 3;
-    CHECK(Grid::build({boxes, {}}, cfg).res == std::array<std::uint32_t, 3>{3, 3, 3});
+    CHECK(build_grid({boxes, {}}, "grid:uniform,max_res=3").res ==
+          std::array<std::uint32_t, 3>{3, 3, 3});
 }
 
 TEST_CASE("grid agrees with brute force", "[accel][grid]") {
@@ -76,11 +80,10 @@ TEST_CASE("grid agrees with brute force", "[accel][grid]") {
             return intersection(soup.boxes[id], box);
         };
     }
-    GridConfig cfg;
-    cfg.density = density;
-    const Grid grid = Grid::build(in, cfg);
+    const std::string spec = "grid:uniform,density=" + std::to_string(density);
+    const Grid grid = build_grid(in, spec);
     REQUIRE(grid.validate().empty());
-    REQUIRE(grid == Grid::build(in, cfg));
+    REQUIRE(grid == build_grid(in, spec));
     const AccelInfo info = grid.info();
     CHECK(info.nodes == grid.cell_count());
     CHECK(info.refs_per_prim >= 1.0);
@@ -95,9 +98,7 @@ TEST_CASE("grid handles primitives and rays on cell boundaries", "[accel][grid]"
     // Boxes whose faces lie exactly on the cell planes of a 4 x 4 x 4 grid over [0, 4]^3, flat
     // boxes in those planes, duplicates and corner points.
     const test::Soup soup = test::lattice_soup({1, 0, 1});
-    GridConfig cfg;
-    cfg.max_res = 4;
-    const Grid grid = Grid::build(soup.input(), cfg);
+    const Grid grid = build_grid(soup.input(), "grid:uniform,max_res=4");
     REQUIRE(grid.res == std::array<std::uint32_t, 3>{4, 4, 4});
     REQUIRE(grid.validate().empty());
     test::check_agrees_with_brute_force(grid, soup, cell_boundary_rays(grid, 3, 400));
@@ -121,7 +122,7 @@ TEST_CASE("grid finds a near hit beyond the first cell of a long primitive", "[a
         const float x = 0.25f * static_cast<float>(i);
         add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
     }
-    const Grid grid = Grid::build(soup.input());
+    const Grid grid = build_grid(soup.input());
     REQUIRE(grid.res[0] > 4);
     const Rayf ray{{-1, 0.5f, 0.5f}, {1, 0, 0}};
     std::vector<std::uint32_t> order;
@@ -155,7 +156,7 @@ TEST_CASE("grid of no usable primitive is empty and never hit", "[accel][grid]")
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const std::vector<Bounds3f> boxes{Bounds3f{}, {{nan, 0, 0}, {1, 1, 1}}};
     for (const std::size_t n : {std::size_t{0}, std::size_t{2}}) {
-        const Grid g = Grid::build({std::span(boxes).first(n), {}});
+        const Grid g = build_grid({std::span(boxes).first(n), {}});
         CHECK(g.validate().empty());
         CHECK(g.cell_count() == 0);
         Rayf r{{-1, 0.5f, 0.5f}, {1, 0, 0}};
@@ -168,14 +169,14 @@ TEST_CASE("grid of no usable primitive is empty and never hit", "[accel][grid]")
     }
     // A single point primitive: one cell.
     const std::vector<Bounds3f> point{Bounds3f(Vec3f{1, 2, 3})};
-    const Grid p = Grid::build({point, {}});
+    const Grid p = build_grid({point, {}});
     CHECK(p.res == std::array<std::uint32_t, 3>{1, 1, 1});
     CHECK(p.validate().empty());
 }
 
 TEST_CASE("grid rejects invalid rays before touching a cell", "[accel][grid]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
-    const Grid grid = Grid::build(soup.input());
+    const Grid grid = build_grid(soup.input());
     test::check_rejects_invalid_rays(grid, soup);
 }
 
@@ -186,7 +187,7 @@ TEST_CASE("grid tests far fewer primitives than brute force", "[accel][grid]") {
         return test::closest_hit_stats(accel, soup, rays);
     };
     const TraversalStats brute = count(BruteForce::build(soup.input()));
-    const TraversalStats grid = count(Grid::build(soup.input()));
+    const TraversalStats grid = count(build_grid(soup.input()));
     CHECK(grid.rays == brute.rays);
     CHECK(grid.prims * 5 < brute.nodes);
 }
@@ -195,7 +196,7 @@ TEST_CASE("grid figures on a 10,000-primitive soup", "[.report][grid]") {
     for (const auto kind : {test::SoupKind::triangles, test::SoupKind::boxes}) {
         const test::Soup soup = test::random_soup(kind, 42, 10000);
         const std::vector<Rayf> rays = test::random_rays(soup, 42, 20000);
-        const Grid grid = Grid::build(soup.input());
+        const Grid grid = build_grid(soup.input());
         const TraversalStats st = test::closest_hit_stats(grid, soup, rays);
         const AccelInfo info = grid.info();
         std::printf(

@@ -2,8 +2,7 @@
 // without exact triangle clipping (perfect splits); rays on split planes; the hit beyond the
 // first leaf a primitive overlaps; invariants, determinism and traversal counts.
 
-#include "accel/kdtree/kdtree.h"
-
+#include "accel/any_accel.h"
 #include "accel/brute_force.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
@@ -13,10 +12,19 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace rtlab {
 namespace {
+
+/// The kd-tree registry rows.
+const std::vector<std::string> kd_rows{"kdtree:sah", "kdtree:median"};
+
+/// The kd-tree built by spec (a registry row name, optionally with ",key=value" settings).
+KdTree build_kd(const std::string& spec, const BuildInput& in) {
+    return std::get<KdTree>(build_accel(spec, in));
+}
 
 /// Bounds of the part of triangle t inside box (Sutherland–Hodgman against the six planes, in
 /// double, rounded outwards to float), intersected with box; empty when the parts are disjoint.
@@ -123,19 +131,17 @@ TEST_CASE("kd-tree nodes are 8 bytes and round-trip their fields", "[accel][kdtr
 }
 
 TEST_CASE("kd-tree agrees with brute force", "[accel][kdtree]") {
-    const auto builder = GENERATE(KdBuilder::sah, KdBuilder::median);
+    const std::string builder = GENERATE(from_range(kd_rows));
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
     const bool exact_clip = GENERATE(false, true);
     const auto count = GENERATE(1u, 2u, 17u, 500u);
     const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
-    CAPTURE(static_cast<int>(builder), static_cast<int>(kind), exact_clip, count, seed);
+    CAPTURE(builder, static_cast<int>(kind), exact_clip, count, seed);
     const test::Soup soup = test::random_soup(kind, seed, count);
-    KdTree::Config cfg;
-    cfg.builder = builder;
     const BuildInput in = make_input(soup, exact_clip);
-    const KdTree tree = KdTree::build(in, cfg);
+    const KdTree tree = build_kd(builder, in);
     REQUIRE(tree.validate().empty());
-    REQUIRE(tree == KdTree::build(in, cfg));
+    REQUIRE(tree == build_kd(builder, in));
     const AccelInfo info = tree.info();
     CHECK(info.nodes == tree.nodes.size());
     CHECK(info.max_depth <= tree.max_depth);
@@ -173,11 +179,9 @@ TEST_CASE("kd-tree handles primitives and rays on shared planes", "[accel][kdtre
         }
         rays.push_back(r);
     }
-    for (const KdBuilder builder : {KdBuilder::sah, KdBuilder::median}) {
-        CAPTURE(static_cast<int>(builder));
-        KdTree::Config cfg;
-        cfg.builder = builder;
-        const KdTree tree = KdTree::build(soup.input(), cfg);
+    for (const std::string& builder : kd_rows) {
+        CAPTURE(builder);
+        const KdTree tree = build_kd(builder, soup.input());
         REQUIRE(tree.validate().empty());
         test::check_agrees_with_brute_force(tree, soup, rays);
         test::check_agrees_with_brute_force(tree, soup, split_plane_rays(tree, 9, 200));
@@ -204,11 +208,9 @@ TEST_CASE("kd-tree finds a near hit beyond the first leaf of a long primitive", 
         add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
     }
     const Rayf ray{{-1, 0.5f, 0.5f}, {1, 0, 0}};
-    for (const KdBuilder builder : {KdBuilder::sah, KdBuilder::median}) {
-        CAPTURE(static_cast<int>(builder));
-        KdTree::Config cfg;
-        cfg.builder = builder;
-        const KdTree tree = KdTree::build(make_input(soup, exact_clip), cfg);
+    for (const std::string& builder : kd_rows) {
+        CAPTURE(builder);
+        const KdTree tree = build_kd(builder, make_input(soup, exact_clip));
         REQUIRE(tree.validate().empty());
         REQUIRE(tree.nodes.size() > 8);
         std::vector<std::uint32_t> order;
@@ -240,11 +242,9 @@ TEST_CASE("kd-tree finds a near hit beyond the first leaf of a long primitive", 
 TEST_CASE("kd-tree of no usable primitive is empty and never hit", "[accel][kdtree]") {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const std::vector<Bounds3f> boxes{Bounds3f{}, {{nan, 0, 0}, {1, 1, 1}}};
-    for (const KdBuilder builder : {KdBuilder::sah, KdBuilder::median}) {
-        KdTree::Config cfg;
-        cfg.builder = builder;
+    for (const std::string& builder : kd_rows) {
         for (const std::size_t n : {std::size_t{0}, std::size_t{2}}) {
-            const KdTree tree = KdTree::build({std::span(boxes).first(n), {}}, cfg);
+            const KdTree tree = build_kd(builder, {std::span(boxes).first(n), {}});
             CHECK(tree.validate().empty());
             Rayf r{{-1, 0.5f, 0.5f}, {1, 0, 0}};
             TraversalStats st;
@@ -259,7 +259,7 @@ TEST_CASE("kd-tree of no usable primitive is empty and never hit", "[accel][kdtr
 
 TEST_CASE("kd-tree rejects invalid rays before touching a node", "[accel][kdtree]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 100);
-    const KdTree tree = KdTree::build(soup.input());
+    const KdTree tree = build_kd("kdtree:sah", soup.input());
     test::check_rejects_invalid_rays(tree, soup);
 }
 
@@ -269,10 +269,8 @@ TEST_CASE("SAH kd-tree beats the median kd-tree and brute force on counts", "[ac
     const auto count = [&](const auto& accel) {
         return test::closest_hit_stats(accel, soup, rays);
     };
-    KdTree::Config median_cfg;
-    median_cfg.builder = KdBuilder::median;
-    const KdTree sah = KdTree::build(soup.input());
-    const KdTree median = KdTree::build(soup.input(), median_cfg);
+    const KdTree sah = build_kd("kdtree:sah", soup.input());
+    const KdTree median = build_kd("kdtree:median", soup.input());
     const TraversalStats brute = count(BruteForce::build(soup.input()));
     const TraversalStats st_sah = count(sah);
     const TraversalStats st_median = count(median);
@@ -288,17 +286,14 @@ TEST_CASE("kd-tree figures on a 10,000-primitive soup", "[.report][kdtree]") {
     for (const auto kind : {test::SoupKind::triangles, test::SoupKind::boxes}) {
         const test::Soup soup = test::random_soup(kind, 42, 10000);
         const std::vector<Rayf> rays = test::random_rays(soup, 42, 20000);
-        for (const KdBuilder builder : {KdBuilder::sah, KdBuilder::median}) {
-            KdTree::Config cfg;
-            cfg.builder = builder;
-            const KdTree tree = KdTree::build(soup.input(), cfg);
+        for (const std::string& builder : kd_rows) {
+            const KdTree tree = build_kd(builder, soup.input());
             const TraversalStats st = test::closest_hit_stats(tree, soup, rays);
             const AccelInfo info = tree.info();
             std::printf(
-                "kdtree:%s %s: nodes/ray %.2f prims/ray %.2f nodes %llu depth %u "
+                "%s %s: nodes/ray %.2f prims/ray %.2f nodes %llu depth %u "
                 "refs/prim %.2f sah %.2f\n",
-                builder == KdBuilder::sah ? "sah" : "median",
-                kind == test::SoupKind::boxes ? "boxes" : "triangles",
+                builder.c_str(), kind == test::SoupKind::boxes ? "boxes" : "triangles",
                 static_cast<double>(st.nodes) / static_cast<double>(st.rays),
                 static_cast<double>(st.prims) / static_cast<double>(st.rays),
                 static_cast<unsigned long long>(info.nodes), info.max_depth, info.refs_per_prim,

@@ -100,6 +100,21 @@ TEST_CASE("a full scene parses with every field", "[scene][io]") {
     CHECK(object_bounds(s, s.order[4]) == Bounds3f({1, -1, -3}, {5, 1, 3}));
 }
 
+TEST_CASE("the primitive type table agrees with PrimType and Scene", "[scene]") {
+    std::size_t n = 0;
+    for_each_type<PrimTypes>([&]<class P>() {
+        CAPTURE(P::name);
+        CHECK(static_cast<std::size_t>(prim_type_v<P>) == n++);
+        CHECK(to_string(prim_type_v<P>) == P::name);
+        Scene s;
+        const ObjectRef r = s.add(typename P::Object{});
+        CHECK(r == ObjectRef{prim_type_v<P>, 0});
+        CHECK(P::objects(s).size() == 1);
+        CHECK(primitive_id_base(s).back() == P::count(P::objects(s)[0]));
+    });
+    CHECK(n == prim_type_count);
+}
+
 TEST_CASE("scenes round-trip through save_scene and load_scene", "[scene][io]") {
     TempDir dir("rtlab_scene_test_");
     write_text(dir.path / "tri.obj", tri_obj);

@@ -9,7 +9,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
 
-accels=$("$RTLAB" list | awk '/^structures/{on=1; next} /^methods/{on=0} on{print $1}')
+accels=$("$RTLAB" list --names)
 [[ -n $accels ]] || { echo "no structures listed"; exit 1; }
 
 "$RTLAB" gen flake --size 1 --as mesh --tess uv:16x8 -o "$tmp/flake.ply" 2>/dev/null

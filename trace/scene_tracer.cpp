@@ -282,51 +282,39 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
     std::vector<std::uint32_t> torus_ids;
     std::vector<TangleCube<float>> tangles;
     std::vector<std::uint32_t> tangle_ids;
+    // Each object's table entry emits its world shapes; the overload for the shape type keeps it.
+    const Overloaded gather{[&](const Triangle<float>& t, std::uint32_t i) {
+                                tris.push_back(t);
+                                tri_ids.push_back(i);
+                            },
+                            [&](const Sphere<float>& t, std::uint32_t i) {
+                                spheres.push_back(t);
+                                sphere_ids.push_back(i);
+                            },
+                            [&](Polygon<float> t, std::uint32_t i) {
+                                polys.push_back(std::move(t));
+                                poly_ids.push_back(i);
+                            },
+                            [&](const Bounds3f& t, std::uint32_t i) {
+                                boxes.push_back(t);
+                                box_ids.push_back(i);
+                            },
+                            [&](const Obb<float>& t, std::uint32_t i) {
+                                obbs.push_back(t);
+                                obb_ids.push_back(i);
+                            },
+                            [&](const Torus<float>& t, std::uint32_t i) {
+                                tori.push_back(t);
+                                torus_ids.push_back(i);
+                            },
+                            [&](const TangleCube<float>& t, std::uint32_t i) {
+                                tangles.push_back(t);
+                                tangle_ids.push_back(i);
+                            }};
     for (std::size_t k = 0; k < scene.order.size(); ++k) {
         const ObjectRef r = scene.order[k];
         const std::uint32_t id = base[k];
-        switch (r.type) {
-        case PrimType::mesh: {
-            const TriangleMesh& m = scene.meshes[r.index].mesh;
-            for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
-                const auto& f = m.triangles[t];
-                tris.push_back({m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]});
-                tri_ids.push_back(id + t);
-            }
-            break;
-        }
-        case PrimType::sphere: {
-            const SphereObject& s = scene.spheres[r.index];
-            spheres.push_back({s.center, s.radius});
-            sphere_ids.push_back(id);
-            break;
-        }
-        case PrimType::polygon:
-            polys.push_back({scene.polygons[r.index].vertices});
-            poly_ids.push_back(id);
-            break;
-        case PrimType::box:
-            boxes.push_back(scene.boxes[r.index].bounds);
-            box_ids.push_back(id);
-            break;
-        case PrimType::obb: {
-            const ObbObject& o = scene.obbs[r.index];
-            obbs.push_back({o.center, {o.axes[0], o.axes[1], o.axes[2]}, o.half});
-            obb_ids.push_back(id);
-            break;
-        }
-        case PrimType::implicit: {
-            const ImplicitObject& o = scene.implicits[r.index];
-            if (o.kind == ImplicitKind::torus) {
-                tori.push_back({o.center, o.major, o.minor});
-                torus_ids.push_back(id);
-            } else {
-                tangles.push_back({o.center, o.scale});
-                tangle_ids.push_back(id);
-            }
-            break;
-        }
-        }
+        visit_object(scene, r, [&]<class P>(const auto& o) { P::shapes(o, id, gather); });
     }
 
     SetAdder add{setup, sets_, set_methods_, build_ms_};

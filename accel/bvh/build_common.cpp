@@ -8,11 +8,6 @@
 
 namespace rtlab::bvh_detail {
 
-bool is_usable(const Bounds3f& b) {
-    return is_finite(b.lo) && is_finite(b.hi) && b.lo.x <= b.hi.x && b.lo.y <= b.hi.y &&
-           b.lo.z <= b.hi.z;
-}
-
 std::uint32_t ceil_log2(std::uint64_t n) {
     return n <= 1 ? 0u : static_cast<std::uint32_t>(std::bit_width(n - 1));
 }
@@ -29,7 +24,7 @@ TopDown::TopDown(const BuildInput& in, const Bvh::Config& cfg)
     : boxes(in.bounds), centers(in.bounds.size()), config(cfg) {
     ids.reserve(boxes.size());
     for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-        if (is_usable(boxes[i])) {
+        if (is_usable_box(boxes[i])) {
             ids.push_back(i);
             centers[i] = boxes[i].center();
         }

@@ -12,9 +12,6 @@
 
 namespace rtlab::bvh_detail {
 
-/// True when box b can be referenced: finite coordinates and lo <= hi on every axis.
-bool is_usable(const Bounds3f& b);
-
 /// ceil(log2(n)) for n >= 1 (0 for n = 1).
 std::uint32_t ceil_log2(std::uint64_t n);
 

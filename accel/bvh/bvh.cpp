@@ -1,4 +1,4 @@
-// Bvh: builder dispatch, size and SAH figures, and the invariant check.
+// Bvh: size and SAH figures, and the invariant check.
 
 #include "accel/bvh/bvh.h"
 
@@ -6,24 +6,6 @@
 #include <vector>
 
 namespace rtlab {
-
-Bvh Bvh::build(const BuildInput& in, const Config& cfg) {
-    switch (cfg.builder) {
-    case BvhBuilder::median:
-        return build_bvh_median(in, cfg);
-    case BvhBuilder::binned_sah:
-        return build_bvh_binned_sah(in, cfg);
-    case BvhBuilder::sweep_sah:
-        return build_bvh_sweep_sah(in, cfg);
-    case BvhBuilder::lbvh:
-        return build_bvh_lbvh(in, cfg);
-    }
-    return build_bvh_binned_sah(in, cfg);
-}
-
-Bvh Bvh::build(const BuildInput& in) {
-    return build(in, Config{});
-}
 
 AccelInfo Bvh::info() const {
     AccelInfo i;

@@ -1,10 +1,9 @@
 #pragma once
-// Binary BVH over primitive boxes: 32-byte Wald nodes with adjacent children, built by one of four
-// builders (one .cpp each), traversed front-to-back by the ray's direction sign on each node's
-// split axis with a fixed 64-entry stack. Cost per ray: O(log N) nodes for well-built trees.
-// Boxes that are empty, NaN or not finite are never referenced: no ray hits an empty box, a NaN
-// box bounds no real geometry, and an infinite one would make every node infinite (unbounded
-// primitives such as planes belong outside the BVH). validate() counts them as legal gaps.
+// Binary BVH over primitive boxes: 32-byte Wald nodes with adjacent children, built by one of the
+// builders in accel/bvh/build_*.cpp (one free function each, listed in accel/registry.cpp),
+// traversed front-to-back by the ray's direction sign on each node's split axis with a fixed
+// 64-entry stack. Cost per ray: O(log N) nodes for well-built trees. Boxes that fail is_usable_box
+// (accel/accel.h) are never referenced; validate() counts them as legal gaps.
 
 #include "accel/accel.h"
 #include "accel/bvh/node.h"
@@ -17,20 +16,11 @@
 
 namespace rtlab {
 
-/// Which top-down or bottom-up algorithm builds the tree.
-enum class BvhBuilder : std::uint8_t {
-    median,      ///< object median on the largest centroid axis
-    binned_sah,  ///< binned SAH (Wald 2007)
-    sweep_sah,   ///< full-sweep SAH over sorted centroids (MacDonald & Booth 1990)
-    lbvh,        ///< Morton-code radix tree (Karras 2012)
-};
-
 /// A binary BVH: the root at 0, then child pairs in the order a depth-first build splits their
 /// parents (a left subtree's pairs precede its right sibling's), and the leaves' primitive ids.
 struct Bvh {
-    /// Build parameters; out-of-range values are clamped by build() and stored clamped.
+    /// Build parameters; the builders clamp out-of-range values and store the clamped ones.
     struct Config {
-        BvhBuilder builder = BvhBuilder::binned_sah;  ///< the algorithm
         std::uint32_t max_leaf_size = 4;  ///< leaves never hold more (clamped to [1, 2^30 - 1])
         std::uint32_t bin_count = 16;     ///< bins per axis for binned SAH (>= 1; 1 = median)
         float traversal_cost = 1.0f;      ///< SAH cost of one node visit
@@ -45,11 +35,6 @@ struct Bvh {
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
     Config config;                         ///< the (clamped) configuration it was built with
-
-    /// Builds with the builder named by cfg.builder; deterministic, O(N log N).
-    [[nodiscard]] static Bvh build(const BuildInput& in, const Config& cfg);
-    /// Builds with the default Config (binned SAH).
-    [[nodiscard]] static Bvh build(const BuildInput& in);
 
     /// Closest hit: offers hit_fn every primitive in a leaf whose box the shrinking window
     /// [ray.tmin, ray.tmax] meets, near child first. Invalid rays return false before any node.
@@ -131,15 +116,6 @@ private:
         }
     }
 };
-
-/// Object-median builder: splits at the median centroid on the largest centroid axis.
-[[nodiscard]] Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg);
-/// Binned SAH builder (Wald 2007) with cfg.bin_count bins per axis.
-[[nodiscard]] Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg);
-/// Full-sweep SAH builder over presorted centroids (MacDonald & Booth 1990).
-[[nodiscard]] Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg);
-/// LBVH: Morton-code radix tree (Karras 2012) with leaves of up to cfg.max_leaf_size.
-[[nodiscard]] Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg);
 
 static_assert(Accel<Bvh>);
 

@@ -17,16 +17,7 @@
 
 namespace rtlab {
 
-Grid Grid::build(const BuildInput& in, const Config& cfg) {
-    return build_grid_uniform(in, cfg);
-}
-
 namespace {
-
-/// True when b is a non-empty box without NaN (lo <= hi on every axis): a primitive to index.
-bool usable(const Bounds3f& b) {
-    return b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z;
-}
 
 /// Cells per axis by Woo's formula over the axes of non-zero extent.
 std::array<std::uint32_t, 3> woo_resolution(const Bounds3f& box,
@@ -64,7 +55,7 @@ Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
     g.prim_present.resize(in.bounds.size());
     std::size_t present = 0;
     for (std::size_t i = 0; i < in.bounds.size(); ++i) {
-        if (usable(in.bounds[i])) {
+        if (is_usable_box(in.bounds[i])) {
             g.prim_present[i] = true;
             g.box.extend(in.bounds[i]);
             ++present;
@@ -111,7 +102,7 @@ Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
         for (std::uint32_t z = lo[2]; z <= hi[2]; ++z) {
             for (std::uint32_t y = lo[1]; y <= hi[1]; ++y) {
                 for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {
-                    if (use_clip && !usable(in.clip(id, cell_box(x, y, z)))) {
+                    if (use_clip && !is_usable_box(in.clip(id, cell_box(x, y, z)))) {
                         continue;
                     }
                     fn(x + g.res[0] * (static_cast<std::size_t>(y) +

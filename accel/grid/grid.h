@@ -35,10 +35,7 @@ struct Grid {
     Vec3f inv_cell_size;                        ///< 1 / cell_size (0 on an axis of zero extent)
     std::vector<std::uint32_t> cell_start;      ///< CSR offsets, size cells + 1
     std::vector<std::uint32_t> cell_prims;      ///< primitive ids, cell by cell, ascending per cell
-    std::vector<bool> prim_present;  ///< per primitive id: its box is non-empty and not NaN
-
-    /// Builds by counting then filling overlaps of primitive boxes (or clipped parts) and cells.
-    [[nodiscard]] static Grid build(const BuildInput& in, const Config& cfg = {});
+    std::vector<bool> prim_present;             ///< per primitive id: its box passes is_usable_box
 
     /// Number of cells.
     std::size_t cell_count() const { return static_cast<std::size_t>(res[0]) * res[1] * res[2]; }
@@ -160,9 +157,6 @@ private:
         return (x - sr.org[a]) * sr.inv_dir[a];
     }
 };
-
-/// Uniform-grid builder (build_uniform.cpp); Grid::build calls it.
-[[nodiscard]] Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg);
 
 static_assert(Accel<Grid>);
 

@@ -61,13 +61,8 @@ struct CostModel {
     }
 };
 
-/// True when b is a non-empty box without NaN (lo <= hi on every axis): a primitive to index.
-inline bool usable(const Bounds3f& b) {
-    return b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z;
-}
-
 /// A kd-tree with the bookkeeping fields set from the input, and no nodes yet; primitives whose
-/// box is empty or NaN are marked absent.
+/// box fails is_usable_box are marked absent.
 inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {
     if (in.bounds.size() > KdNode::max_index) {
         throw std::length_error("kd-tree: too many primitives for 30-bit counts");
@@ -76,7 +71,7 @@ inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {
     t.prim_present.resize(in.bounds.size());
     std::size_t present = 0;
     for (std::size_t i = 0; i < in.bounds.size(); ++i) {
-        if (usable(in.bounds[i])) {
+        if (is_usable_box(in.bounds[i])) {
             t.prim_present[i] = true;
             t.scene_bounds.extend(in.bounds[i]);
             ++present;

@@ -61,14 +61,14 @@ public:
                 right.push_back(r);
             } else {
                 Bounds3f lb = clip(r.id, left_box), rb = clip(r.id, right_box);
-                if (!kd_detail::usable(lb) && !kd_detail::usable(rb)) {
+                if (!is_usable_box(lb) && !is_usable_box(rb)) {
                     lb = intersection(r.box, left_box);
                     rb = intersection(r.box, right_box);
                 }
-                if (kd_detail::usable(lb)) {
+                if (is_usable_box(lb)) {
                     left.push_back({r.id, lb});
                 }
-                if (kd_detail::usable(rb)) {
+                if (is_usable_box(rb)) {
                     right.push_back({r.id, rb});
                 }
             }

@@ -114,15 +114,15 @@ public:
                 continue;
             }
             Bounds3f lb = clip(id, left_box), rb = clip(id, right_box);
-            if (!kd_detail::usable(lb) && !kd_detail::usable(rb)) {
+            if (!is_usable_box(lb) && !is_usable_box(rb)) {
                 // An inexact clip lost the primitive on both sides: keep its boxes instead.
                 lb = intersection(in_.bounds[id], left_box);
                 rb = intersection(in_.bounds[id], right_box);
             }
-            if (kd_detail::usable(lb)) {
+            if (is_usable_box(lb)) {
                 add_events(both_left, id, lb);
             }
-            if (kd_detail::usable(rb)) {
+            if (is_usable_box(rb)) {
                 add_events(both_right, id, rb);
             }
         }

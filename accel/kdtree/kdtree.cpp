@@ -1,4 +1,4 @@
-// kd-tree: builder dispatch, size and SAH figures, and the structural invariants.
+// kd-tree: size and SAH figures, and the structural invariants.
 
 #include "accel/kdtree/kdtree.h"
 
@@ -9,16 +9,6 @@
 #include <vector>
 
 namespace rtlab {
-
-KdTree KdTree::build(const BuildInput& in, const Config& cfg) {
-    switch (cfg.builder) {
-    case KdBuilder::median:
-        return build_kdtree_median(in, cfg);
-    case KdBuilder::sah:
-        break;
-    }
-    return build_kdtree_sah(in, cfg);
-}
 
 namespace {
 

@@ -1,9 +1,9 @@
 #pragma once
 // kd-tree: 8-byte nodes, built by the O(N log N) SAH sweep of Wald & Havran 2006 (build_sah.cpp)
-// or by spatial medians (build_median.cpp); traversed front to back with a stack of
-// (node, t_enter, t_exit) as in Havran's thesis (2000, TA_rec_B) and pbrt. A primitive may be
-// referenced by several leaves, so a hit beyond the current leaf does not end the traversal.
-// Cost per ray: O(depth) inner-node steps per leaf visited plus the leaf primitives.
+// or by spatial medians (build_median.cpp), both listed in accel/registry.cpp; traversed front to
+// back with a stack of (node, t_enter, t_exit) as in Havran's thesis (2000, TA_rec_B) and pbrt. A
+// primitive may be referenced by several leaves, so a hit beyond the current leaf does not end the
+// traversal. Cost per ray: O(depth) inner-node steps per leaf visited plus the leaf primitives.
 
 #include "accel/accel.h"
 #include "accel/kdtree/node.h"
@@ -17,21 +17,14 @@
 
 namespace rtlab {
 
-/// Which kd-tree builder KdTree::build runs.
-enum class KdBuilder {
-    sah,     ///< Wald & Havran 2006 event sweep, O(N log N), with automatic termination
-    median,  ///< spatial median of the longest axis, same cost-based termination
-};
-
 /// A kd-tree over primitive boxes; nodes[0] is the root, prim_ids holds the leaves' lists.
 struct KdTree {
     /// Build parameters; the cost constants are those of the SAH cost model.
     struct Config {
-        KdBuilder builder = KdBuilder::sah;  ///< which builder runs
-        float traversal_cost = 1.0f;         ///< K_T: cost of one inner-node step
-        float intersection_cost = 1.5f;      ///< K_I: cost of one ray-primitive test
-        float empty_bonus = 0.8f;     ///< split cost is scaled by (1 - bonus) if a side is empty
-        std::uint32_t max_depth = 0;  ///< deepest leaf; 0 = 8 + 1.3 log2 N (pbrt); capped at 64
+        float traversal_cost = 1.0f;     ///< K_T: cost of one inner-node step
+        float intersection_cost = 1.5f;  ///< K_I: cost of one ray-primitive test
+        float empty_bonus = 0.8f;        ///< split cost is scaled by (1 - bonus) if a side is empty
+        std::uint32_t max_depth = 0;     ///< deepest leaf; 0 = 8 + 1.3 log2 N (pbrt); capped at 64
         std::uint32_t min_leaf_size = 1;  ///< nodes with at most this many primitives are leaves
     };
 
@@ -41,16 +34,10 @@ struct KdTree {
     std::vector<KdNode> nodes;            ///< pre-order; an inner node's below child follows it
     std::vector<std::uint32_t> prim_ids;  ///< leaf primitive lists (caller's primitive ids)
     Bounds3f scene_bounds;                ///< union of the non-empty primitive boxes
-    std::vector<bool> prim_present;       ///< per primitive id: its box is non-empty and not NaN
+    std::vector<bool> prim_present;       ///< per primitive id: its box passes is_usable_box
     std::uint32_t max_depth = 0;          ///< the depth limit the build used
     float traversal_cost = 1.0f;          ///< K_T the build used (for info().sah_cost)
     float intersection_cost = 1.5f;       ///< K_I the build used (for info().sah_cost)
-
-    /// Builds with the builder named in cfg; empty and NaN boxes are left out.
-    [[nodiscard]] static KdTree build(const BuildInput& in, const Config& cfg);
-    /// Builds with the default Config (a separate overload: GCC rejects `= {}` for a nested
-    /// struct with member initializers inside its enclosing class).
-    [[nodiscard]] static KdTree build(const BuildInput& in) { return build(in, Config{}); }
 
     /// Closest hit: leaves are visited front to back and every primitive in them is offered to
     /// hit_fn; traversal ends once ray.tmax (shrunk by hit_fn) lies within the current leaf.
@@ -173,12 +160,6 @@ private:
         }
     }
 };
-
-/// SAH kd-tree (Wald & Havran 2006); see build_sah.cpp.
-[[nodiscard]] KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
-
-/// Spatial-median kd-tree; see build_median.cpp.
-[[nodiscard]] KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
 
 static_assert(Accel<KdTree>);
 

@@ -1,7 +1,8 @@
 #pragma once
 // Ray-AABB slab test (Kay & Kajiya 1986; Williams et al. 2005) on intersect/box/slabs.h. "slabs"
 // uses the IEEE reciprocal (zero direction components give +-inf, no epsilon); "slabs_robust"
-// widens the slab distances by 2*gamma(3) (Ize 2013). Cost: 3 div per call, then 6 mul, 6 sub.
+// widens the slab distances by 2*gamma(3) (Ize 2013). Cost: 3 div per ray (precompute: the
+// reciprocal direction), then 6 mul, 6 sub per box.
 
 #include "intersect/box/slabs.h"
 #include "intersect/hit.h"
@@ -13,10 +14,12 @@ namespace rtlab {
 
 namespace detail {
 
-/// Slab test of the closed box b for the ray window; the hit t is the entry (tmin when inside).
+/// Slab test of the closed box b for the ray window, with sr = SlabRay(ray); the hit t is the
+/// entry (tmin when inside).
 template <bool IsRobust, class T>
-std::optional<PrimHit<T>> aabb_intersect(const Bounds3<T>& b, const Ray<T>& ray) {
-    const SlabRay<T> sr(ray);  // per call: a traversal would prepare this once per ray
+std::optional<PrimHit<T>> aabb_intersect(const Bounds3<T>& b,
+                                         const Ray<T>& ray,
+                                         const SlabRay<T>& sr) {
     T tnear;
     if (!slab_hit<IsRobust>(b, sr, ray.tmin, ray.tmax, tnear)) {
         return std::nullopt;
@@ -32,16 +35,30 @@ struct AabbSlabs {
     using Scalar = T;
     using Shape = Bounds3<T>;
     using Prepared = Bounds3<T>;
+    /// The per-ray set-up: reciprocal direction and direction signs.
+    using RayData = SlabRay<T>;
     static constexpr std::string_view name = "slabs";
 
     /// The box itself.
     static Prepared prepare(const Shape& s) { return s; }
     /// The box itself.
     static Bounds3<T> bounds(const Prepared& p) { return p; }
+    /// The reciprocal direction of ray (once per ray, shared by every box).
+    static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
     /// Entry t of the window [tmin, tmax] into the closed box (tmin when the origin is inside);
     /// u = v = 0.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return detail::aabb_intersect<false>(p, ray);
+        return intersect(p, ray, precompute(ray));
+    }
+    /// Same as intersect(p, ray) with r = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+                                               const Ray<T>& ray,
+                                               const RayData& r) {
+        return detail::aabb_intersect<false>(p, ray, r);
+    }
+    /// Same as occluded(p, ray) with r = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
+        return intersect(p, ray, r).has_value();
     }
     /// True when the window meets the box.
     static bool occluded(const Prepared& p, const Ray<T>& ray) {
@@ -56,15 +73,29 @@ struct AabbSlabsRobust {
     using Scalar = T;
     using Shape = Bounds3<T>;
     using Prepared = Bounds3<T>;
+    /// The per-ray set-up: reciprocal direction and direction signs.
+    using RayData = SlabRay<T>;
     static constexpr std::string_view name = "slabs_robust";
 
     /// The box itself.
     static Prepared prepare(const Shape& s) { return s; }
     /// The box itself.
     static Bounds3<T> bounds(const Prepared& p) { return p; }
+    /// The reciprocal direction of ray (once per ray, shared by every box).
+    static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
     /// Entry t (padded down by up to 2*gamma(3) relative; tmin when inside); u = v = 0.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return detail::aabb_intersect<true>(p, ray);
+        return intersect(p, ray, precompute(ray));
+    }
+    /// Same as intersect(p, ray) with r = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+                                               const Ray<T>& ray,
+                                               const RayData& r) {
+        return detail::aabb_intersect<true>(p, ray, r);
+    }
+    /// Same as occluded(p, ray) with r = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
+        return intersect(p, ray, r).has_value();
     }
     /// True when the padded window meets the box.
     static bool occluded(const Prepared& p, const Ray<T>& ray) {

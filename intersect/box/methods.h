@@ -18,21 +18,22 @@ using AabbMethods = std::tuple<AabbSlabs<T>, AabbSlabsRobust<T>>;
 template <class T>
 using ObbMethods = std::tuple<ObbSlabs<T>>;
 
+static_assert(names_unique<AabbMethods<float>>() && names_unique<ObbMethods<float>>());
 static_assert(IntersectionMethod<AabbSlabs<float>>);
 static_assert(IntersectionMethod<AabbSlabsRobust<double>>);
 static_assert(IntersectionMethod<ObbSlabs<float>>);
+static_assert(HasRayData<AabbSlabs<float>> && HasRayData<AabbSlabsRobust<double>>);
 
-/// Calls f.template operator()<M>() for every AABB method M in scalar T, in table order.
+/// Calls f.template operator()<M>() for every AABB method M in scalar T, in list order.
 template <class T, class F>
 void for_each_aabb_method(F&& f) {
-    f.template operator()<AabbSlabs<T>>();
-    f.template operator()<AabbSlabsRobust<T>>();
+    for_each_type<AabbMethods<T>>(f);
 }
 
-/// Calls f.template operator()<M>() for every OBB method M in scalar T, in table order.
+/// Calls f.template operator()<M>() for every OBB method M in scalar T, in list order.
 template <class T, class F>
 void for_each_obb_method(F&& f) {
-    f.template operator()<ObbSlabs<T>>();
+    for_each_type<ObbMethods<T>>(f);
 }
 
 }  // namespace rtlab

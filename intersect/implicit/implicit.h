@@ -34,14 +34,25 @@ struct PreparedImplicit {
     Bounds3<typename S::Scalar> box;
 };
 
+/// The per-ray set-up of the implicit methods: the reciprocal direction for the box clip.
+template <class T>
+struct ImplicitRay {
+    Vec3<T> inv_dir;  ///< 1 / ray.dir per component (+-inf for a zero component)
+
+    /// Set up for one ray.
+    static ImplicitRay make(const Ray<T>& ray) {
+        return {Vec3<T>(T(1) / ray.dir.x, T(1) / ray.dir.y, T(1) / ray.dir.z)};
+    }
+};
+
 /// The window [t0, t1] of the ray inside box, intersected with [tmin, tmax]; false when empty.
 /// Slab values are widened by 4 ulps (relative) so rounding never cuts the box; a zero direction
 /// component gives +-inf (or NaN, which the comparisons ignore) as the slab tests expect.
 template <class T>
-bool clip_to_box(const Bounds3<T>& box, const Ray<T>& ray, T& t0, T& t1) {
+bool clip_to_box(const Bounds3<T>& box, const Ray<T>& ray, const ImplicitRay<T>& rd, T& t0, T& t1) {
     T lo = -std::numeric_limits<T>::infinity(), hi = std::numeric_limits<T>::infinity();
     for (std::size_t k = 0; k < 3; ++k) {
-        const T inv = T(1) / ray.dir[k];
+        const T inv = rd.inv_dir[k];
         T tn = (box.lo[k] - ray.org[k]) * inv;
         T tf = (box.hi[k] - ray.org[k]) * inv;
         if (tn > tf) {
@@ -67,15 +78,23 @@ bool clip_to_box(const Bounds3<T>& box, const Ray<T>& ray, T& t0, T& t1) {
     return t0 <= t1;
 }
 
+/// Same as clip_to_box(box, ray, ImplicitRay<T>::make(ray), t0, t1).
+template <class T>
+bool clip_to_box(const Bounds3<T>& box, const Ray<T>& ray, T& t0, T& t1) {
+    return clip_to_box(box, ray, ImplicitRay<T>::make(ray), t0, t1);
+}
+
 /// The hit of the first root u in [0, 1] that first_root(poly) finds, where poly is the surface
 /// polynomial along the clipped window (u = 0 at t0, u = 1 at t1).
 template <class S, class FirstRoot>
-std::optional<PrimHit<typename S::Scalar>> implicit_intersect(const PreparedImplicit<S>& p,
-                                                              const Ray<typename S::Scalar>& ray,
-                                                              FirstRoot&& first_root) {
+std::optional<PrimHit<typename S::Scalar>> implicit_intersect(
+    const PreparedImplicit<S>& p,
+    const Ray<typename S::Scalar>& ray,
+    const ImplicitRay<typename S::Scalar>& rd,
+    FirstRoot&& first_root) {
     using T = typename S::Scalar;
     T t0, t1;
-    if (!clip_to_box(p.box, ray, t0, t1) || !std::isfinite(t0) || !std::isfinite(t1)) {
+    if (!clip_to_box(p.box, ray, rd, t0, t1) || !std::isfinite(t0) || !std::isfinite(t1)) {
         return std::nullopt;
     }
     const T len = t1 - t0;
@@ -85,6 +104,15 @@ std::optional<PrimHit<typename S::Scalar>> implicit_intersect(const PreparedImpl
         return std::nullopt;
     }
     return PrimHit<T>{std::clamp(t0 + *u * len, t0, t1)};
+}
+
+/// Same as implicit_intersect(p, ray, ImplicitRay::make(ray), first_root).
+template <class S, class FirstRoot>
+std::optional<PrimHit<typename S::Scalar>> implicit_intersect(const PreparedImplicit<S>& p,
+                                                              const Ray<typename S::Scalar>& ray,
+                                                              FirstRoot&& first_root) {
+    return implicit_intersect(p, ray, ImplicitRay<typename S::Scalar>::make(ray),
+                              std::forward<FirstRoot>(first_root));
 }
 
 /// Unit surface normal (normalised gradient) at a point on the surface.

@@ -20,20 +20,29 @@
 
 namespace rtlab {
 
-/// Members common to the three methods (shape, prepare, bounds, occluded, normal).
+/// Members common to the three methods (shape, prepare, bounds, per-ray set-up, occluded,
+/// normal).
 template <template <class> class Surface, class T, class Derived>
 struct ImplicitMethodBase {
     using Scalar = T;
     using Shape = Surface<T>;
     using Prepared = PreparedImplicit<Shape>;
+    /// The per-ray set-up: the reciprocal direction for the box clip.
+    using RayData = ImplicitRay<T>;
 
     /// Stores the surface and its box.
     static Prepared prepare(const Shape& s) { return {s, s.bounds()}; }
     /// The surface's conservative box.
     static Bounds3<T> bounds(const Prepared& p) { return p.box; }
+    /// The reciprocal direction of ray (once per ray, shared by every surface).
+    static RayData precompute(const Ray<T>& ray) { return ImplicitRay<T>::make(ray); }
     /// True when the surface is hit inside [tmin, tmax].
     static bool occluded(const Prepared& p, const Ray<T>& ray) {
         return Derived::intersect(p, ray).has_value();
+    }
+    /// Same as occluded(p, ray) with rd = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
+        return Derived::intersect(p, ray, rd).has_value();
     }
     /// Unit normal (normalised gradient) at the hit point of ray at hit.t.
     static Vec3<T> normal(const Prepared& p, const Ray<T>& ray, const PrimHit<T>& hit) {
@@ -50,7 +59,14 @@ struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Su
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray) {
-        return implicit_intersect(p, ray, [](const auto& poly) -> std::optional<T> {
+        return intersect(p, ray, ImplicitRay<T>::make(ray));
+    }
+
+    /// Same as intersect(p, ray) with rd = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
+                                               const Ray<T>& ray,
+                                               const ImplicitRay<T>& rd) {
+        return implicit_intersect(p, ray, rd, [](const auto& poly) -> std::optional<T> {
             const RealRoots<T, 4> r = solve_closed_form(poly);
             T u;
             return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
@@ -70,7 +86,14 @@ struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray) {
-        return implicit_intersect(p, ray, [](const auto& poly) { return first_root(poly); });
+        return intersect(p, ray, ImplicitRay<T>::make(ray));
+    }
+
+    /// Same as intersect(p, ray) with rd = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
+                                               const Ray<T>& ray,
+                                               const ImplicitRay<T>& rd) {
+        return implicit_intersect(p, ray, rd, [](const auto& poly) { return first_root(poly); });
     }
 
     /// First root of poly in [0, 1] by marching and bracketed Newton of at most max_iter steps
@@ -126,7 +149,14 @@ struct ImplicitLaguerre : ImplicitMethodBase<Surface, T, ImplicitLaguerre<Surfac
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray) {
-        return implicit_intersect(p, ray, [](const auto& poly) -> std::optional<T> {
+        return intersect(p, ray, ImplicitRay<T>::make(ray));
+    }
+
+    /// Same as intersect(p, ray) with rd = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
+                                               const Ray<T>& ray,
+                                               const ImplicitRay<T>& rd) {
+        return implicit_intersect(p, ray, rd, [](const auto& poly) -> std::optional<T> {
             const auto r = laguerre_real_roots(poly);
             T u;
             return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
@@ -140,18 +170,19 @@ template <template <class> class Surface, class T>
 using ImplicitMethods = std::
     tuple<ImplicitClosedForm<Surface, T>, ImplicitNewton<Surface, T>, ImplicitLaguerre<Surface, T>>;
 
+static_assert(names_unique<ImplicitMethods<Torus, float>>());
 static_assert(ImplicitSurface<Torus<float>>);
 static_assert(ImplicitSurface<TangleCube<double>>);
 static_assert(IntersectionMethod<ImplicitClosedForm<Torus, float>>);
 static_assert(IntersectionMethod<ImplicitNewton<TangleCube, double>>);
 static_assert(IntersectionMethod<ImplicitLaguerre<Torus, double>>);
+static_assert(HasRayData<ImplicitNewton<Torus, float>>);
 
-/// Calls f.template operator()<M>() for every implicit method M on Surface in scalar T.
+/// Calls f.template operator()<M>() for every implicit method M on Surface in scalar T, in list
+/// order.
 template <template <class> class Surface, class T, class F>
 void for_each_implicit_method(F&& f) {
-    f.template operator()<ImplicitClosedForm<Surface, T>>();
-    f.template operator()<ImplicitNewton<Surface, T>>();
-    f.template operator()<ImplicitLaguerre<Surface, T>>();
+    for_each_type<ImplicitMethods<Surface, T>>(f);
 }
 
 }  // namespace rtlab

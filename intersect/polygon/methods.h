@@ -13,14 +13,14 @@ namespace rtlab {
 template <class T>
 using PolygonMethods = std::tuple<PolygonCrossing<T>, PolygonWinding<T>>;
 
+static_assert(names_unique<PolygonMethods<float>>());
 static_assert(IntersectionMethod<PolygonCrossing<float>>);
 static_assert(IntersectionMethod<PolygonWinding<double>>);
 
-/// Calls f.template operator()<M>() for every polygon method M in scalar T, in table order.
+/// Calls f.template operator()<M>() for every polygon method M in scalar T, in list order.
 template <class T, class F>
 void for_each_polygon_method(F&& f) {
-    f.template operator()<PolygonCrossing<T>>();
-    f.template operator()<PolygonWinding<T>>();
+    for_each_type<PolygonMethods<T>>(f);
 }
 
 }  // namespace rtlab

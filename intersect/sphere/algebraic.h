@@ -1,7 +1,8 @@
 #pragma once
 // Algebraic ray-sphere test: substitute the ray into |p - c|^2 = r^2 and use the textbook formula
 // t = (-b -+ sqrt(b^2 - 4ac)) / 2a. No epsilon. Cancellation in b^2 - 4ac when the sphere is small
-// and far (relative error ~ eps (D/r)^2). Cost: 3 dot products, 1 sqrt, 2 divisions.
+// and far (relative error ~ eps (D/r)^2). Cost: 2 dot products, 1 sqrt, 2 divisions
+// per test, plus a = d.d once per ray (precompute).
 
 #include "intersect/sphere/sphere.h"
 
@@ -18,17 +19,28 @@ struct SphereAlgebraic {
     using Scalar = T;
     using Shape = Sphere<T>;
     using Prepared = PreparedSphere<T>;
+    /// The per-ray set-up: a = dir . dir.
+    using RayData = SphereRay<T>;
     static constexpr std::string_view name = "algebraic";
 
     /// Copies centre and radius and squares the radius.
     static Prepared prepare(const Shape& s) { return detail::prepare_sphere(s); }
     /// Conservative box around the sphere.
     static Bounds3<T> bounds(const Prepared& p) { return detail::sphere_bounds(p); }
+    /// a = dir . dir of ray (once per ray, shared by every sphere).
+    static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
 
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
     static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
+        return roots(p, ray, precompute(ray));
+    }
+
+    /// Same as roots(p, ray) with rd = precompute(ray).
+    static std::optional<std::pair<T, T>> roots(const Prepared& p,
+                                                const Ray<T>& ray,
+                                                const RayData& rd) {
         const Vec3<T> f = ray.org - p.center;
-        const T a = dot(ray.dir, ray.dir);
+        const T a = rd.a;
         const T b = T(2) * dot(f, ray.dir);
         const T c = dot(f, f) - p.radius2;
         const T disc = b * b - T(4) * a * c;
@@ -39,14 +51,26 @@ struct SphereAlgebraic {
         return std::pair<T, T>{(-b - s) / (T(2) * a), (-b + s) / (T(2) * a)};
     }
 
+    /// Same as intersect(p, ray) with rd = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+                                               const Ray<T>& ray,
+                                               const RayData& rd) {
+        return detail::pick_root(roots(p, ray, rd), ray);
+    }
+
     /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return detail::pick_root(roots(p, ray), ray);
+        return intersect(p, ray, precompute(ray));
     }
 
     /// True when the sphere surface is hit inside [tmin, tmax].
     static bool occluded(const Prepared& p, const Ray<T>& ray) {
         return intersect(p, ray).has_value();
+    }
+
+    /// Same as occluded(p, ray) with rd = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
+        return intersect(p, ray, rd).has_value();
     }
 };
 

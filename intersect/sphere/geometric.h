@@ -2,7 +2,8 @@
 // Geometric ray-sphere test with early outs (seed 000, "Schnitt Strahl-Kugel"; also Haines 1989
 // in Glassner, "An Introduction to Ray Tracing"). Generalised to non-unit directions by dividing
 // by a = d.d. No epsilon: the seed's `m^2 - r^2 > eps` choice is replaced by taking the nearest
-// root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root.
+// root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root; a = d.d
+// once per ray (precompute).
 
 #include "intersect/sphere/sphere.h"
 
@@ -19,17 +20,28 @@ struct SphereGeometric {
     using Scalar = T;
     using Shape = Sphere<T>;
     using Prepared = PreparedSphere<T>;
+    /// The per-ray set-up: a = dir . dir.
+    using RayData = SphereRay<T>;
     static constexpr std::string_view name = "geometric";
 
     /// Copies centre and radius and squares the radius.
     static Prepared prepare(const Shape& s) { return detail::prepare_sphere(s); }
     /// Conservative box around the sphere.
     static Bounds3<T> bounds(const Prepared& p) { return detail::sphere_bounds(p); }
+    /// a = dir . dir of ray (once per ray, shared by every sphere).
+    static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
 
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
     static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
+        return roots(p, ray, precompute(ray));
+    }
+
+    /// Same as roots(p, ray) with rd = precompute(ray).
+    static std::optional<std::pair<T, T>> roots(const Prepared& p,
+                                                const Ray<T>& ray,
+                                                const RayData& rd) {
         const Vec3<T> m = p.center - ray.org;  // origin -> centre
-        const T a = dot(ray.dir, ray.dir);
+        const T a = rd.a;
         const T b = dot(m, ray.dir);        // a * (projection of the centre on the ray)
         const T c = dot(m, m) - p.radius2;  // > 0: origin outside
         const T disc = b * b - a * c;       // a^2 * squared half chord
@@ -40,8 +52,10 @@ struct SphereGeometric {
         return std::pair<T, T>{(b - s) / a, (b + s) / a};
     }
 
-    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
+    /// Same as intersect(p, ray) with rd = precompute(ray).
+    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+                                               const Ray<T>& ray,
+                                               const RayData& rd) {
         const Vec3<T> m = p.center - ray.org;
         const T b = dot(m, ray.dir);
         const T c = dot(m, m) - p.radius2;
@@ -50,7 +64,7 @@ struct SphereGeometric {
         if (c >= T(0) && b <= T(0) && ray.tmin >= T(0)) {
             return std::nullopt;
         }
-        const T a = dot(ray.dir, ray.dir);
+        const T a = rd.a;
         const T disc = b * b - a * c;
         if (disc < T(0)) {
             return std::nullopt;
@@ -59,9 +73,19 @@ struct SphereGeometric {
         return detail::pick_root(std::optional<std::pair<T, T>>{{(b - s) / a, (b + s) / a}}, ray);
     }
 
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
+    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
+        return intersect(p, ray, precompute(ray));
+    }
+
     /// True when the sphere surface is hit inside [tmin, tmax].
     static bool occluded(const Prepared& p, const Ray<T>& ray) {
         return intersect(p, ray).has_value();
+    }
+
+    /// Same as occluded(p, ray) with rd = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
+        return intersect(p, ray, rd).has_value();
     }
 };
 

@@ -14,16 +14,16 @@ namespace rtlab {
 template <class T>
 using SphereMethods = std::tuple<SphereStable<T>, SphereGeometric<T>, SphereAlgebraic<T>>;
 
+static_assert(names_unique<SphereMethods<float>>());
 static_assert(IntersectionMethod<SphereGeometric<float>>);
 static_assert(IntersectionMethod<SphereAlgebraic<float>>);
 static_assert(IntersectionMethod<SphereStable<double>>);
+static_assert(HasRayData<SphereGeometric<float>>);
 
-/// Calls f.template operator()<M>() for every sphere method M in scalar T, in table order.
+/// Calls f.template operator()<M>() for every sphere method M in scalar T, in list order.
 template <class T, class F>
 void for_each_sphere_method(F&& f) {
-    f.template operator()<SphereGeometric<T>>();
-    f.template operator()<SphereAlgebraic<T>>();
-    f.template operator()<SphereStable<T>>();
+    for_each_type<SphereMethods<T>>(f);
 }
 
 }  // namespace rtlab

@@ -30,6 +30,15 @@ struct PreparedSphere {
     T radius2 = 1;
 };
 
+/// The per-ray set-up of the sphere methods: a = dir . dir, the quadratic's leading coefficient.
+template <class T>
+struct SphereRay {
+    T a = 1;  ///< dot(ray.dir, ray.dir)
+
+    /// Set up for one ray.
+    static SphereRay make(const Ray<T>& ray) { return {dot(ray.dir, ray.dir)}; }
+};
+
 namespace detail {
 
 /// Prepared form shared by the sphere methods.

@@ -18,26 +18,20 @@ using TriangleMethods = std::tuple<MollerTrumbore<T>, Badouel<T>, SeguraFeito<T>
 
 /// The triangle methods in scalar T that report t, u, v (satisfy IntersectionMethod).
 template <class T>
-using TriangleIntersectors = std::tuple<MollerTrumbore<T>, Badouel<T>, Watertight<T>>;
+using TriangleIntersectors = IntersectorsOf<TriangleMethods<T>>;
 
-namespace detail {
-/// Calls f.template operator()<M>() for each M of the tuple type, in order.
-template <class F, class... Ms>
-void for_each_type(F& f, std::tuple<Ms...>*) {
-    (f.template operator()<Ms>(), ...);
-}
-}  // namespace detail
+static_assert(names_unique<TriangleMethods<float>>());
 
 /// Call f.template operator()<M>() for every triangle method M in scalar T, in list order.
 template <class T, class F>
 void for_each_triangle_method(F&& f) {
-    detail::for_each_type(f, static_cast<TriangleMethods<T>*>(nullptr));
+    for_each_type<TriangleMethods<T>>(f);
 }
 
 /// Call f.template operator()<M>() for every triangle method in scalar T that reports t, u, v.
 template <class T, class F>
 void for_each_triangle_intersector(F&& f) {
-    detail::for_each_type(f, static_cast<TriangleIntersectors<T>*>(nullptr));
+    for_each_type<TriangleIntersectors<T>>(f);
 }
 
 }  // namespace rtlab

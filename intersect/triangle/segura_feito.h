@@ -2,7 +2,8 @@
 // Segura & Feito 2001, "Algorithms to test ray-triangle intersection. Comparative study": signs
 // of signed volumes only, no hit point; window ends org + tmin dir, org + tmax dir (ray variant if
 // infinite); edge volumes from the edge vector (see edge_volume). Epsilon: none (zero volume =
-// touching; n.dir == 0 misses). Cost: 3 cross, 6 dot, 3 endpoint comparisons.
+// touching; n.dir == 0 misses). Cost: 3 cross, 6 dot, 3 endpoint comparisons. No per-ray
+// set-up: the window ends depend on [tmin, tmax], which a closest-hit traversal shrinks.
 
 #include "intersect/method.h"
 #include "intersect/ray.h"

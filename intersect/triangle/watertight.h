@@ -1,7 +1,8 @@
 #pragma once
 // Woop, Benthin & Wald 2013, "Watertight ray/triangle intersection" (JCGT): ray-space shear,
 // edge functions with the double fallback for exact float zeros, scaled t-range test, two-sided.
-// Epsilon: none, zero edge functions are inclusive. Cost: 6 madd shear, 3 edge fns, 1 division.
+// Epsilon: none, zero edge functions are inclusive. Cost: 6 madd shear, 3 edge fns, 1 division
+// per test; 3 divisions per ray in precompute (the shear constants).
 
 #include "intersect/hit.h"
 #include "intersect/method.h"
@@ -49,14 +50,20 @@ template <class T>
 struct Watertight : VertexTriangleMethod<T> {
     using typename VertexTriangleMethod<T>::Prepared;
 
+    /// The per-ray set-up: axis permutation and shear.
+    using RayData = WatertightRay<T>;
+
     static constexpr std::string_view name = "watertight";
+
+    /// The axis permutation and shear of ray (once per ray, shared by every triangle).
+    static RayData precompute(const Ray<T>& ray) { return WatertightRay<T>::make(ray); }
 
     /// Hit with t in [ray.tmin, ray.tmax] and barycentrics u (p1), v (p2), or nullopt.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, WatertightRay<T>::make(ray));
+        return intersect(p, ray, precompute(ray));
     }
 
-    /// Same as intersect(p, ray) with the per-ray constants precomputed by WatertightRay::make.
+    /// Same as intersect(p, ray) with r = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const WatertightRay<T>& r) {
@@ -97,6 +104,11 @@ struct Watertight : VertexTriangleMethod<T> {
         return intersect(p, ray).has_value();
     }
 
+    /// Same as occluded(p, ray) with r = precompute(ray).
+    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
+        return intersect(p, ray, r).has_value();
+    }
+
 private:
     /// Sign test, scaled window test and division, in the scalar E of the edge functions.
     template <class E>
@@ -129,5 +141,6 @@ private:
 
 static_assert(IntersectionMethod<Watertight<float>>);
 static_assert(IntersectionMethod<Watertight<double>>);
+static_assert(HasRayData<Watertight<float>>);
 
 }  // namespace rtlab

@@ -8,7 +8,7 @@ expect_error "stability unknown case" stability --case nope
 expect_error "stability zero rays" stability --rays 0
 expect_ok "stability fixture" stability --fixture "$tmp/wt" --rays 3000 --seed 3
 if [[ -s $tmp/wt/sphere.ply && -s $tmp/wt/inside.rays ]]; then
-    accels=$("$RTLAB" list | awk '/^structures/ {on = 1; next} /^methods/ {on = 0} on {print $1}')
+    accels=$("$RTLAB" list --names)
     [[ -n $accels ]] || { echo "FAIL (stability leaks): rtlab list named no structure"; fail=1; }
     for accel in $accels; do
         if "$RTLAB" trace --scene "$tmp/wt/sphere.ply" --rays "$tmp/wt/inside.rays" \

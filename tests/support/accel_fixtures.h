@@ -61,7 +61,7 @@ private:
 enum class SoupKind { boxes, triangles };
 
 /// A primitive soup: the primitives, one bounding box per primitive (index = id), and the leaf
-/// callbacks. Box primitives that are empty or NaN never hit.
+/// callbacks. Box primitives that fail is_usable_box never hit.
 struct Soup {
     SoupKind kind = SoupKind::boxes;
     std::vector<Bounds3f> boxes;                             ///< bounds of each primitive
@@ -76,8 +76,8 @@ struct Soup {
             return MollerTrumbore<float>::intersect(triangles[id], ray);
         }
         const Bounds3f& b = boxes[id];
-        if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
-            return std::nullopt;  // empty or NaN: not a primitive
+        if (!is_usable_box(b)) {
+            return std::nullopt;  // empty, NaN or infinite: not a primitive
         }
         float t0 = ray.tmin, t1 = ray.tmax;
         if (!clip_slabs<false>(b.lo, b.hi, SlabRay<float>(ray), t0, t1)) {
@@ -108,7 +108,7 @@ struct Soup {
     Bounds3f scene_bounds() const {
         Bounds3f s;
         for (const Bounds3f& b : boxes) {
-            if (b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z) {
+            if (is_usable_box(b)) {
                 s.extend(b);
             }
         }

@@ -1,0 +1,164 @@
+// The registry: one row per builder (and, later, per node layout). A row names the structure,
+// describes it in one line, declares the parameters a spec may set (defaults taken from the
+// structure's Config, so they cannot drift apart) and builds from a parsed spec. Adding a builder:
+// its own accel/<kind>/build_<name>.cpp with one free function, declared and listed here.
+
+#include "accel/any_accel.h"
+
+#include <stdexcept>
+
+namespace rtlab {
+
+// The builder functions, one .cpp each (the row below is the only other place that names them).
+Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg);
+Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg);
+Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg);
+Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg);
+KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
+KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
+Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg);
+
+namespace {
+
+// Parameters shared by several rows; each default is the Config's own.
+const Bvh::Config bvh_default{};
+const KdTree::Config kd_default{};
+const GridConfig grid_default{};
+constexpr double cost_max = 1e6;
+
+const ParamSpec max_leaf =
+    integer_param("max_leaf",
+                  bvh_default.max_leaf_size,
+                  1,
+                  BvhNode::max_prim_count,
+                  "most primitives in one leaf (a larger range is always split)");
+const ParamSpec bins = integer_param("bins",
+                                     bvh_default.bin_count,
+                                     1,
+                                     1024,
+                                     "bins per axis over the centroid bounds (1 = object median)");
+const ParamSpec bvh_ct = real_param("ct",
+                                    static_cast<double>(bvh_default.traversal_cost),
+                                    0,
+                                    cost_max,
+                                    "SAH cost of one node visit");
+const ParamSpec bvh_ci = real_param("ci",
+                                    static_cast<double>(bvh_default.intersection_cost),
+                                    1e-3,
+                                    cost_max,
+                                    "SAH cost of one primitive test");
+const ParamSpec morton_bits =
+    integer_param("morton_bits", bvh_default.morton_bits, 1, 10, "Morton code bits per axis");
+const ParamSpec kd_ct = real_param("ct",
+                                   static_cast<double>(kd_default.traversal_cost),
+                                   0,
+                                   cost_max,
+                                   "K_T: SAH cost of one inner-node step");
+const ParamSpec kd_ci = real_param("ci",
+                                   static_cast<double>(kd_default.intersection_cost),
+                                   1e-3,
+                                   cost_max,
+                                   "K_I: SAH cost of one primitive test");
+const ParamSpec empty_bonus = real_param("empty_bonus",
+                                         static_cast<double>(kd_default.empty_bonus),
+                                         0,
+                                         0.99,
+                                         "split cost scaled by (1 - bonus) when one side is empty");
+const ParamSpec max_depth = integer_param("max_depth",
+                                          kd_default.max_depth,
+                                          0,
+                                          KdTree::depth_limit,
+                                          "deepest leaf; 0 = 8 + 1.3 log2 N (pbrt)");
+const ParamSpec min_leaf = integer_param("min_leaf",
+                                         kd_default.min_leaf_size,
+                                         1,
+                                         1024,
+                                         "nodes with at most this many primitives become leaves");
+const ParamSpec density = real_param("density",
+                                     static_cast<double>(grid_default.density),
+                                     1e-3,
+                                     1e3,
+                                     "lambda: target cells per primitive (Woo)");
+const ParamSpec max_res =
+    integer_param("max_res", grid_default.max_res, 1, 1024, "most cells along one axis");
+
+std::uint32_t as_u32(double v) {
+    return static_cast<std::uint32_t>(v);
+}
+
+Bvh::Config bvh_config(const AccelSpec& s) {
+    Bvh::Config c;
+    c.max_leaf_size = as_u32(s.value_or("max_leaf", c.max_leaf_size));
+    c.bin_count = as_u32(s.value_or("bins", c.bin_count));
+    c.traversal_cost = static_cast<float>(s.value_or("ct", c.traversal_cost));
+    c.intersection_cost = static_cast<float>(s.value_or("ci", c.intersection_cost));
+    c.morton_bits = as_u32(s.value_or("morton_bits", c.morton_bits));
+    return c;
+}
+
+KdTree::Config kd_config(const AccelSpec& s) {
+    KdTree::Config c;
+    c.traversal_cost = static_cast<float>(s.value_or("ct", c.traversal_cost));
+    c.intersection_cost = static_cast<float>(s.value_or("ci", c.intersection_cost));
+    c.empty_bonus = static_cast<float>(s.value_or("empty_bonus", c.empty_bonus));
+    c.max_depth = as_u32(s.value_or("max_depth", c.max_depth));
+    c.min_leaf_size = as_u32(s.value_or("min_leaf", c.min_leaf_size));
+    return c;
+}
+
+GridConfig grid_config(const AccelSpec& s) {
+    GridConfig c;
+    c.density = static_cast<float>(s.value_or("density", c.density));
+    c.max_res = as_u32(s.value_or("max_res", c.max_res));
+    return c;
+}
+
+/// A row's build function: the builder B called with the Config the spec describes.
+template <auto B, auto ToConfig>
+AnyAccel row(const BuildInput& in, const AccelSpec& s) {
+    return B(in, ToConfig(s));
+}
+
+AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
+    return BruteForce::build(in);
+}
+
+const AccelEntry registry_rows[] = {
+    {"brute", "brute force: every primitive box per ray (the reference)", {}, &brute_row},
+    {"bvh:median",
+     "binary BVH, object median on the largest centroid axis",
+     {max_leaf},
+     &row<build_bvh_median, bvh_config>},
+    {"bvh:binned",
+     "binary BVH, binned SAH (Wald 2007)",
+     {max_leaf, bins, bvh_ct, bvh_ci},
+     &row<build_bvh_binned_sah, bvh_config>},
+    {"bvh:sweep",
+     "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
+     {max_leaf, bvh_ct, bvh_ci},
+     &row<build_bvh_sweep_sah, bvh_config>},
+    {"bvh:lbvh",
+     "binary BVH, Morton-code radix tree (Karras 2012)",
+     {max_leaf, morton_bits},
+     &row<build_bvh_lbvh, bvh_config>},
+    {"kdtree:sah",
+     "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006)",
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     &row<build_kdtree_sah, kd_config>},
+    {"kdtree:median",
+     "kd-tree, spatial median of the longest axis, SAH termination",
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     &row<build_kdtree_median, kd_config>},
+    {"grid:uniform",
+     "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",
+     {density, max_res},
+     &row<build_grid_uniform, grid_config>},
+};
+
+}  // namespace
+
+std::span<const AccelEntry> accel_registry() {
+    return registry_rows;
+}
+
+}  // namespace rtlab

@@ -1,0 +1,189 @@
+// Structure specs: parsing `NAME[,key=value]...` against the registry rows and writing the
+// canonical form.
+
+#include "accel/spec.h"
+
+#include "accel/any_accel.h"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <system_error>
+
+namespace rtlab {
+
+namespace {
+
+/// Shortest text that reads back as the same float (values of real parameters are floats).
+std::string shortest_float(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof(buf), static_cast<float>(v));
+    return std::string(buf, r.ptr);
+}
+
+std::string join_keys(const AccelEntry& e) {
+    if (e.params.empty()) {
+        return "no parameters";
+    }
+    std::string out = "takes ";
+    for (const ParamSpec& p : e.params) {
+        out += fmt::format("{}{}", &p == e.params.data() ? "" : ", ", p.key);
+    }
+    return out;
+}
+
+std::string known_names() {
+    std::string out;
+    for (const AccelEntry& e : accel_registry()) {
+        out += fmt::format("{}{}", out.empty() ? "" : ", ", e.name);
+    }
+    return out;
+}
+
+[[noreturn]] void fail(std::string_view spec, const std::string& what) {
+    throw std::invalid_argument(fmt::format("--accel '{}': {}", spec, what));
+}
+
+/// The value of `text` for parameter p, or a one-line error naming spec and key.
+double parse_value(std::string_view spec, const ParamSpec& p, std::string_view text) {
+    const std::string_view key = p.key;
+    if (p.kind == ParamKind::choice) {
+        for (std::size_t i = 0; i < p.choices.size(); ++i) {
+            if (p.choices[i] == text) {
+                return static_cast<double>(i);
+            }
+        }
+        fail(spec, fmt::format("{} must be one of {}, not '{}'", key, p.range_text(), text));
+    }
+    double v = 0;
+    const char* end = text.data() + text.size();
+    const auto r = std::from_chars(text.data(), end, v);
+    if (text.empty() || r.ec != std::errc{} || r.ptr != end || !std::isfinite(v)) {
+        fail(spec, fmt::format("{} needs a number, not '{}'", key, text));
+    }
+    if (p.kind == ParamKind::integer && v != std::floor(v)) {
+        fail(spec, fmt::format("{} must be a whole number, not '{}'", key, text));
+    }
+    if (p.kind == ParamKind::real) {
+        v = static_cast<double>(static_cast<float>(v));  // the builders store floats
+    }
+    if (!(v >= p.min && v <= p.max)) {
+        fail(spec, fmt::format("{}={} is outside {}", key, text, p.range_text()));
+    }
+    return v;
+}
+
+}  // namespace
+
+ParamSpec integer_param(
+    std::string_view key, double default_value, double min, double max, std::string_view help) {
+    ParamSpec p;
+    p.key = key;
+    p.kind = ParamKind::integer;
+    p.default_value = default_value;
+    p.min = min;
+    p.max = max;
+    p.help = help;
+    return p;
+}
+
+ParamSpec real_param(
+    std::string_view key, double default_value, double min, double max, std::string_view help) {
+    ParamSpec p = integer_param(key, default_value, min, max, help);
+    p.kind = ParamKind::real;
+    return p;
+}
+
+std::string ParamSpec::format(double v) const {
+    switch (kind) {
+    case ParamKind::integer:
+        return std::to_string(static_cast<long long>(v));
+    case ParamKind::real:
+        return shortest_float(v);
+    case ParamKind::choice:
+        return std::string(choices.at(static_cast<std::size_t>(v)));
+    }
+    return {};
+}
+
+std::string ParamSpec::range_text() const {
+    if (kind == ParamKind::choice) {
+        std::string out;
+        for (std::string_view c : choices) {
+            out += fmt::format("{}{}", out.empty() ? "" : "|", c);
+        }
+        return out;
+    }
+    return fmt::format("[{}, {}]", format(min), format(max));
+}
+
+std::string AccelSpec::canonical() const {
+    std::string out(entry->name);
+    for (std::size_t i = 0; i < entry->params.size(); ++i) {
+        out += fmt::format(",{}={}", entry->params[i].key, entry->params[i].format(values[i]));
+    }
+    return out;
+}
+
+double AccelSpec::value(std::string_view key) const {
+    for (std::size_t i = 0; i < entry->params.size(); ++i) {
+        if (entry->params[i].key == key) {
+            return values[i];
+        }
+    }
+    throw std::logic_error(fmt::format("{} has no parameter {}", entry->name, key));
+}
+
+double AccelSpec::value_or(std::string_view key, double fallback) const {
+    for (std::size_t i = 0; i < entry->params.size(); ++i) {
+        if (entry->params[i].key == key) {
+            return values[i];
+        }
+    }
+    return fallback;
+}
+
+AccelSpec parse_accel_spec(std::string_view text) {
+    const std::size_t comma = text.find(',');
+    const std::string_view name = text.substr(0, comma);
+    const AccelEntry* e = find_accel(name);
+    if (e == nullptr) {
+        fail(text, fmt::format("unknown structure '{}' (known: {}; see rtlab list)", name,
+                               known_names()));
+    }
+    AccelSpec spec = default_spec(*e);
+    std::vector<bool> given(e->params.size(), false);
+    std::string_view rest = comma == std::string_view::npos ? "" : text.substr(comma + 1);
+    if (comma != std::string_view::npos && rest.empty()) {
+        fail(text, "empty parameter after ','");
+    }
+    while (!rest.empty()) {
+        const std::size_t next = rest.find(',');
+        const std::string_view item = rest.substr(0, next);
+        rest = next == std::string_view::npos ? "" : rest.substr(next + 1);
+        if (next != std::string_view::npos && rest.empty()) {
+            fail(text, "empty parameter after ','");
+        }
+        const std::size_t eq = item.find('=');
+        if (eq == std::string_view::npos || eq == 0) {
+            fail(text, fmt::format("'{}' is not key=value", item));
+        }
+        const std::string_view key = item.substr(0, eq);
+        std::size_t i = 0;
+        while (i < e->params.size() && e->params[i].key != key) {
+            ++i;
+        }
+        if (i == e->params.size()) {
+            fail(text, fmt::format("unknown parameter '{}' ({} {})", key, e->name, join_keys(*e)));
+        }
+        if (given[i]) {
+            fail(text, fmt::format("parameter '{}' given twice", key));
+        }
+        given[i] = true;
+        spec.values[i] = parse_value(text, e->params[i], item.substr(eq + 1));
+    }
+    return spec;
+}
+
+}  // namespace rtlab

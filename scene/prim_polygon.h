@@ -1,0 +1,80 @@
+#pragma once
+// Planar polygon objects: one primitive each; entry `PolygonPrim` of the primitive type table
+// (scene.h).
+
+#include "intersect/bounds.h"
+#include "intersect/polygon/polygon.h"
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace rtlab {
+
+/// A planar polygon (>= 3 vertices, assumed planar; may be concave), one primitive.
+struct PolygonObject {
+    std::vector<Vec3f> vertices;
+    std::uint32_t material = 0;
+    friend bool operator==(const PolygonObject&, const PolygonObject&) = default;
+};
+
+/// Everything the code knows about polygons (the table entry contract is in scene.h).
+struct PolygonPrim {
+    using Object = PolygonObject;
+    static constexpr std::string_view name = "polygon";
+
+    /// The scene's set of polygons.
+    template <class S>
+    static auto& objects(S& s) {
+        return s.polygons;
+    }
+    /// Primitives per object.
+    static std::uint32_t count(const Object&) { return 1; }
+    /// Box of the whole object.
+    static Bounds3f bounds(const Object& o) {
+        Bounds3f b;
+        for (const Vec3f& v : o.vertices) {
+            b.extend(v);
+        }
+        return b;
+    }
+    /// Box of primitive `local` (the object's one primitive).
+    static Bounds3f prim_bounds(const Object& o, std::uint32_t) { return bounds(o); }
+    /// Calls emit(shape, global id) for the tracer; `id` is the object's first global id.
+    template <class Emit>
+    static void shapes(const Object& o, std::uint32_t id, Emit&& emit) {
+        emit(Polygon<float>{o.vertices}, id);
+    }
+    /// Unnormalised geometric normal (Newell's method, winding order).
+    static Vec3f normal(const Object& o, std::uint32_t, const Vec3f&) {
+        return detail::newell_normal(o.vertices);
+    }
+
+    /// Reads the object's fields (not its material) through a scene_io reader.
+    template <class In>
+    static Object read(In& in) {
+        in.keys({"type", "material", "vertices"});
+        Object o;
+        o.vertices = in.vec3_array("vertices");
+        return o;
+    }
+    /// Writes the object's fields (not type and material) through a scene_io writer.
+    template <class Out>
+    static void write(const Object& o, Out& out) {
+        out.vec3_array("vertices", o.vertices);
+    }
+    /// Fails at the offending field's path when the object breaks an invariant.
+    template <class Path>
+    static void check(const Object& o, const Path& at) {
+        if (o.vertices.size() < 3) {
+            (at / "vertices").fail("needs at least 3 vertices");
+        }
+        for (std::size_t i = 0; i < o.vertices.size(); ++i) {
+            if (!is_finite(o.vertices[i])) {
+                (at / "vertices")[i].fail("non-finite vector");
+            }
+        }
+    }
+};
+
+}  // namespace rtlab

@@ -1,0 +1,95 @@
+// Structure specs: parsing, canonical form, one-line errors, and parameters that reach the
+// builders (different max_leaf, different trees, both agreeing with brute force).
+
+#include "accel/any_accel.h"
+#include "support/accel_checks.h"
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+namespace rtlab {
+namespace {
+
+TEST_CASE("a spec names every parameter in canonical order, defaults included", "[accel][spec]") {
+    CHECK(parse_accel_spec("bvh:binned").canonical() == "bvh:binned,max_leaf=4,bins=16,ct=1,ci=1");
+    CHECK(parse_accel_spec("bvh:binned,bins=32,max_leaf=8").canonical() ==
+          "bvh:binned,max_leaf=8,bins=32,ct=1,ci=1");
+    CHECK(parse_accel_spec("kdtree:sah,ct=1,ci=80,empty_bonus=0.5").canonical() ==
+          "kdtree:sah,ct=1,ci=80,empty_bonus=0.5,max_depth=0,min_leaf=1");
+    CHECK(parse_accel_spec("grid:uniform,density=4").canonical() ==
+          "grid:uniform,density=4,max_res=512");
+    CHECK(parse_accel_spec("brute").canonical() == "brute");
+    // Reals are stored as floats and printed as the shortest text that reads back the same.
+    CHECK(parse_accel_spec("bvh:sweep,ct=0.1").canonical() == "bvh:sweep,max_leaf=4,ct=0.1,ci=1");
+}
+
+TEST_CASE("every row's canonical spec parses back to itself", "[accel][spec]") {
+    for (const AccelEntry& e : accel_registry()) {
+        const AccelSpec d = default_spec(e);
+        CAPTURE(d.canonical());
+        const AccelSpec again = parse_accel_spec(d.canonical());
+        CHECK(again.entry == &e);
+        CHECK(again.values == d.values);
+        CHECK(again.canonical() == d.canonical());
+        for (const ParamSpec& p : e.params) {
+            CAPTURE(p.key);
+            CHECK(!p.help.empty());
+            CHECK(p.default_value >= p.min);
+            CHECK(p.default_value <= p.max);
+            CHECK(d.value(p.key) == p.default_value);
+        }
+    }
+}
+
+TEST_CASE("bad specs are one-line errors naming the spec and the key", "[accel][spec]") {
+    using Catch::Contains;
+    const auto error = [](const std::string& spec) {
+        try {
+            parse_accel_spec(spec);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const std::string unknown_key = error("bvh:binned,leaf=8");
+    CHECK_THAT(unknown_key,
+               Contains("bvh:binned,leaf=8") && Contains("'leaf'") && Contains("max_leaf"));
+    CHECK_THAT(error("bvh:binned,max_leaf=0"),
+               Contains("max_leaf=0") && Contains("outside [1, 1073741823]"));
+    CHECK_THAT(error("bvh:binned,max_leaf=2.5"), Contains("whole number"));
+    CHECK_THAT(error("bvh:binned,max_leaf=abc"), Contains("needs a number"));
+    CHECK_THAT(error("bvh:binned,max_leaf=nan"), Contains("needs a number"));
+    CHECK_THAT(error("bvh:binned,max_leaf="), Contains("needs a number"));
+    CHECK_THAT(error("bvh:binned,max_leaf=4,max_leaf=8"), Contains("given twice"));
+    CHECK_THAT(error("bvh:binned,"), Contains("empty parameter"));
+    CHECK_THAT(error("bvh:binned,max_leaf"), Contains("not key=value"));
+    CHECK_THAT(error("bvh:nope"),
+               Contains("unknown structure") && Contains("bvh:binned") && Contains("brute"));
+    CHECK_THAT(error("brute,max_leaf=2"), Contains("no parameters"));
+    CHECK_THAT(error("kdtree:sah,empty_bonus=1"), Contains("outside [0, 0.99]"));
+    for (const std::string& spec : {unknown_key, error("bvh:binned,max_leaf=0")}) {
+        CHECK(spec.find('\n') == std::string::npos);
+    }
+}
+
+TEST_CASE("max_leaf reaches the builder: other trees, same answers", "[accel][spec]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 21, 2000);
+    const std::vector<Rayf> rays = test::random_rays(soup, 21, 300);
+    const Bvh one = std::get<Bvh>(build_accel("bvh:binned,max_leaf=1", soup.input()));
+    const Bvh eight = std::get<Bvh>(build_accel("bvh:binned,max_leaf=8", soup.input()));
+    CHECK(one.config.max_leaf_size == 1);
+    CHECK(eight.config.max_leaf_size == 8);
+    CHECK(one.info().nodes > eight.info().nodes);
+    CHECK(one.info().bytes_per_prim > eight.info().bytes_per_prim);
+    test::check_agrees_with_brute_force(one, soup, rays);
+    test::check_agrees_with_brute_force(eight, soup, rays);
+    const TraversalStats st_one = test::closest_hit_stats(one, soup, rays);
+    const TraversalStats st_eight = test::closest_hit_stats(eight, soup, rays);
+    CHECK(st_one.nodes > st_eight.nodes);
+    CHECK(st_one.prims < st_eight.prims);
+}
+
+}  // namespace
+}  // namespace rtlab
