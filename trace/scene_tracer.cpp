@@ -160,7 +160,7 @@ struct ClosestQuery {
         const RayDataOf<M> rd = precompute_ray<M>(ray);
         std::uint32_t best = invalid_id;
         PrimHit<float> best_hit{};
-        const auto leaf = [&](std::uint32_t id, Rayf& rr) {
+        const auto leaf = [&, rd](std::uint32_t id, Rayf& rr) {
             const auto h = intersect_with<M>(s.prims[id], rr, rd);
             if (!h) {
                 return false;
@@ -191,7 +191,7 @@ struct AnyHitQuery {
         }
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
         std::uint32_t found = invalid_id;
-        const auto leaf = [&](std::uint32_t id, const Rayf& rr) {
+        const auto leaf = [&, rd](std::uint32_t id, const Rayf& rr) {
             if (!occluded_with<M>(s.prims[id], rr, rd)) {
                 return false;
             }
