@@ -109,23 +109,6 @@ void check_every_structure(const test::Soup& soup, const std::vector<Rayf>& rays
     }
 }
 
-/// Specs of row e: its defaults, and for each parameter one spec with only that parameter moved
-/// to an extreme of its range (the minimum, or the maximum where the minimum is the default).
-std::vector<AccelSpec> default_and_varied_specs(const AccelEntry& e) {
-    std::vector<AccelSpec> out{default_spec(e)};
-    for (std::size_t i = 0; i < e.params.size(); ++i) {
-        const ParamSpec& p = e.params[i];
-        AccelSpec s = default_spec(e);
-        if (p.kind == ParamKind::choice) {
-            s.values[i] = p.default_value == 0 ? 1 : 0;
-        } else {
-            s.values[i] = p.min != p.default_value ? p.min : p.max;
-        }
-        out.push_back(s);
-    }
-    return out;
-}
-
 }  // namespace
 
 TEST_CASE("every registered structure agrees with brute force", "[accel][agreement]") {
@@ -138,7 +121,7 @@ TEST_CASE("every registered structure agrees with brute force", "[accel][agreeme
     const std::vector<Answer> expected = oracle_answers(soup, rays);
 
     for (const AccelEntry& entry : accel_registry()) {
-        for (const AccelSpec& spec : default_and_varied_specs(entry)) {
+        for (const AccelSpec& spec : test::default_and_varied_specs(entry)) {
             CAPTURE(spec.canonical());
             const AnyAccel accel = build_accel(spec, soup.input());
             REQUIRE(accel_validate(accel).empty());

@@ -2,6 +2,7 @@
 // seeded scene of the family traced with "brute" and with "bvh:binned" (plain and robust
 // traversal) gives the same closest hits, and any hit agrees with closest-hit validity.
 
+#include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 #include "trace/method_families.h"
 #include "trace/ray_gen.h"
@@ -194,10 +195,14 @@ void check_agree(const std::vector<Rayf>& rays, const Answers& want, const Answe
     }
 }
 
-// Every ray set answer of method on a scene of family: bvh:binned (plain and robust) against
-// brute force.
-void check_method(std::string_view family, std::string_view method, bool intersector) {
-    for (const std::uint64_t seed : {1u, 2u}) {
+// Every ray set answer of method on a scene of family, for each structure spec (plain and robust
+// traversal) against brute force.
+void check_method(std::string_view family,
+                  std::string_view method,
+                  bool intersector,
+                  const std::vector<std::string>& specs,
+                  const std::vector<std::uint64_t>& seeds) {
+    for (const std::uint64_t seed : seeds) {
         CAPTURE(family, method, seed);
         const Scene s = family_scene(family, seed);
         REQUIRE(!s.order.empty());  // a new family needs a scene here
@@ -211,10 +216,11 @@ void check_method(std::string_view family, std::string_view method, bool interse
             CHECK(hit > rays.size() / 20);  // the scene is actually hit
             CHECK(hit < rays.size());       // and missed
         }
-        for (const bool robust : {false, true}) {
-            CAPTURE(robust);
-            check_agree(rays, brute,
-                        trace(s, rays, "bvh:binned", family, method, intersector, robust));
+        for (const std::string& spec : specs) {
+            for (const bool robust : {false, true}) {
+                CAPTURE(spec, robust);
+                check_agree(rays, brute, trace(s, rays, spec, family, method, intersector, robust));
+            }
         }
     }
 }
@@ -227,7 +233,7 @@ TEST_CASE("every method of every family traces like brute force", "[trace][metho
         using First = std::tuple_element_t<0, typename Family::ShapeLists>;
         for_each_type<First>([&]<class M>() {
             seen.insert(std::string(Family::name) + "=" + std::string(M::name));
-            check_method(Family::name, M::name, IntersectionMethod<M>);
+            check_method(Family::name, M::name, IntersectionMethod<M>, {"bvh:binned"}, {1, 2});
         });
     });
     std::size_t listed = 0;
@@ -235,6 +241,21 @@ TEST_CASE("every method of every family traces like brute force", "[trace][metho
         listed += f.methods.size();
     }
     CHECK(seen.size() == listed);
+}
+
+TEST_CASE("every registered structure, default and varied, traces every family like brute force",
+          "[trace][methods][accel]") {
+    // Each row with its defaults and with each parameter moved to an extreme of its range, for
+    // the default method of every family (all methods run on bvh:binned in the test above).
+    std::vector<std::string> specs;
+    for (const AccelSpec& spec : test::registry_specs()) {
+        specs.push_back(spec.canonical());
+    }
+    for_each_type<MethodFamilyTable>([&]<class Family>() {
+        using First = std::tuple_element_t<0, typename Family::ShapeLists>;
+        using Default = std::tuple_element_t<0, First>;
+        check_method(Family::name, Default::name, IntersectionMethod<Default>, specs, {3});
+    });
 }
 
 TEST_CASE("the --method name table is generated from the method lists", "[trace][methods]") {

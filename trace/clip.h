@@ -4,6 +4,7 @@
 // is the bounds of the clipped polygon, intersected with the box to absorb rounding.
 
 #include "intersect/bounds.h"
+#include "intersect/triangle/triangle.h"
 #include "intersect/vec.h"
 
 #include <array>
@@ -48,6 +49,12 @@ inline Bounds3f clip_triangle_bounds(const Vec3f& a,
         out.extend(poly[i]);
     }
     return n == 0 ? Bounds3f{} : intersection(out, box);
+}
+
+/// The part of a triangle inside box, for kd-tree perfect splits. A shape type gets perfect
+/// splits in SceneTracer by having a clip_shape_bounds overload.
+inline Bounds3f clip_shape_bounds(const Triangle<float>& t, const Bounds3f& box) {
+    return clip_triangle_bounds(t.p0, t.p1, t.p2, box);
 }
 
 }  // namespace rtlab

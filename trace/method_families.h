@@ -101,6 +101,25 @@ struct FamilyOf<Shape, std::tuple<Families...>> {
 /// Every method of every family, in table order (the variant of prim_sets.h is built over it).
 using AllFamilyMethods = typename detail::AllMethods<MethodFamilyTable>::type;
 
+namespace detail {
+template <class Table>
+struct ShapeTypes;
+template <class... Families>
+struct ShapeTypes<std::tuple<Families...>> {
+    template <class Lists>
+    struct Of;
+    template <class... Lists>
+    struct Of<std::tuple<Lists...>> {
+        using type = std::tuple<typename std::tuple_element_t<0, Lists>::Shape...>;
+    };
+    using type = TupleCat<typename Of<typename Families::ShapeLists>::type...>;
+};
+}  // namespace detail
+
+/// Every shape type the tracer traces (one per method list), in table order: the order of a
+/// scene's primitive sets.
+using TracedShapes = typename detail::ShapeTypes<MethodFamilyTable>::type;
+
 /// The family of MethodFamilyTable whose methods take Shape.
 template <class Shape>
 using FamilyOf = std::tuple_element_t<0, typename detail::FamilyOf<Shape, MethodFamilyTable>::type>;

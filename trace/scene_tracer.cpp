@@ -21,7 +21,7 @@ constexpr std::size_t grain = 256;
 template <class M>
 AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                     std::vector<std::uint32_t> ids,
-                    const std::string& accel,
+                    const AccelSpec& accel,
                     const ClipFn& clip,
                     double& build_ms) {
     PrimSet<M> set;
@@ -64,6 +64,7 @@ const MethodFamily& family(std::string_view name) {
 // group's family (the family's default when it names none), and its "family=method" label.
 struct SetAdder {
     const TraceSetup& setup;
+    const AccelSpec& accel;
     std::vector<AnyPrimSet>& sets;
     std::vector<std::string>& labels;
     double& build_ms;
@@ -79,7 +80,7 @@ struct SetAdder {
         using Family = FamilyOf<Shape>;
         const std::string_view m = pick_method(family(Family::name), setup.methods);
         const bool found = with_method_named<Shape>(m, [&]<class M>() {
-            sets.push_back(make_set<M>(shapes, std::move(ids), setup.accel, clip, build_ms));
+            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, build_ms));
         });
         if (!found) {
             throw std::invalid_argument("internal: method " + std::string(m) + " not in its set");
@@ -87,6 +88,32 @@ struct SetAdder {
         labels.push_back(std::string(Family::name) + "=" + std::string(m));
     }
 };
+
+/// The shapes of one type gathered from a scene, with their global primitive ids.
+template <class S>
+struct ShapeBucket {
+    std::vector<S> shapes;
+    std::vector<std::uint32_t> ids;
+};
+
+template <class List>
+struct ShapeBuckets;
+template <class... Ss>
+struct ShapeBuckets<std::tuple<Ss...>> {
+    std::tuple<ShapeBucket<Ss>...> all;
+};
+
+/// kd-tree perfect splits for shape types with a clip_shape_bounds overload (trace/clip.h).
+template <class S>
+ClipFn clip_for(const std::vector<S>& shapes) {
+    if constexpr (requires(const S& s, const Bounds3f& box) { clip_shape_bounds(s, box); }) {
+        return [&shapes](std::uint32_t i, const Bounds3f& box) {
+            return clip_shape_bounds(shapes[i], box);
+        };
+    } else {
+        return {};
+    }
+}
 
 // Runs f(set, accel, robust-tag) with every type static: once per set per batch.
 template <class F>
@@ -247,9 +274,8 @@ void trace_maybe_counted(const std::vector<AnyPrimSet>& sets,
 }  // namespace
 
 SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(setup.robust) {
-    if (find_accel(setup.accel) == nullptr) {
-        build_accel(setup.accel, BuildInput{});  // throws the message listing known names
-    }
+    const AccelSpec accel = parse_accel_spec(setup.accel);  // throws on a bad spec
+    accel_spec_ = accel.canonical();
     for (const std::string& w : setup.methods) {
         bool known = false;
         for (const MethodFamily& f : method_families()) {
@@ -268,67 +294,22 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
 
     const std::vector<std::uint32_t> base = primitive_id_base(scene);
     prim_count_ = base.back();
-    std::vector<Triangle<float>> tris;
-    std::vector<std::uint32_t> tri_ids;
-    std::vector<Sphere<float>> spheres;
-    std::vector<std::uint32_t> sphere_ids;
-    std::vector<Polygon<float>> polys;
-    std::vector<std::uint32_t> poly_ids;
-    std::vector<Bounds3f> boxes;
-    std::vector<std::uint32_t> box_ids;
-    std::vector<Obb<float>> obbs;
-    std::vector<std::uint32_t> obb_ids;
-    std::vector<Torus<float>> tori;
-    std::vector<std::uint32_t> torus_ids;
-    std::vector<TangleCube<float>> tangles;
-    std::vector<std::uint32_t> tangle_ids;
-    // Each object's table entry emits its world shapes; the overload for the shape type keeps it.
-    const Overloaded gather{[&](const Triangle<float>& t, std::uint32_t i) {
-                                tris.push_back(t);
-                                tri_ids.push_back(i);
-                            },
-                            [&](const Sphere<float>& t, std::uint32_t i) {
-                                spheres.push_back(t);
-                                sphere_ids.push_back(i);
-                            },
-                            [&](Polygon<float> t, std::uint32_t i) {
-                                polys.push_back(std::move(t));
-                                poly_ids.push_back(i);
-                            },
-                            [&](const Bounds3f& t, std::uint32_t i) {
-                                boxes.push_back(t);
-                                box_ids.push_back(i);
-                            },
-                            [&](const Obb<float>& t, std::uint32_t i) {
-                                obbs.push_back(t);
-                                obb_ids.push_back(i);
-                            },
-                            [&](const Torus<float>& t, std::uint32_t i) {
-                                tori.push_back(t);
-                                torus_ids.push_back(i);
-                            },
-                            [&](const TangleCube<float>& t, std::uint32_t i) {
-                                tangles.push_back(t);
-                                tangle_ids.push_back(i);
-                            }};
+    // One bucket per traced shape type; each object's table entry emits its world shapes into
+    // the bucket of their type, and each non-empty bucket becomes a set, in table order.
+    ShapeBuckets<TracedShapes> buckets;
+    const auto gather = [&buckets]<class S>(S shape, std::uint32_t id) {
+        auto& b = std::get<ShapeBucket<S>>(buckets.all);
+        b.shapes.push_back(std::move(shape));
+        b.ids.push_back(id);
+    };
     for (std::size_t k = 0; k < scene.order.size(); ++k) {
         const ObjectRef r = scene.order[k];
         const std::uint32_t id = base[k];
         visit_object(scene, r, [&]<class P>(const auto& o) { P::shapes(o, id, gather); });
     }
-
-    SetAdder add{setup, sets_, set_methods_, build_ms_};
-    // Perfect splits for kd-trees: the triangle clipped to the node box.
-    const ClipFn clip = [&tris](std::uint32_t i, const Bounds3f& box) {
-        return clip_triangle_bounds(tris[i].p0, tris[i].p1, tris[i].p2, box);
-    };
-    add(tris, std::move(tri_ids), clip);
-    add(spheres, std::move(sphere_ids));
-    add(polys, std::move(poly_ids));
-    add(boxes, std::move(box_ids));
-    add(obbs, std::move(obb_ids));
-    add(tori, std::move(torus_ids));
-    add(tangles, std::move(tangle_ids));
+    SetAdder add{setup, accel, sets_, set_methods_, build_ms_};
+    std::apply([&](auto&... b) { (add(b.shapes, std::move(b.ids), clip_for(b.shapes)), ...); },
+               buckets.all);
 }
 
 std::vector<AccelInfo> SceneTracer::infos() const {

@@ -2,6 +2,7 @@
 // Catch2 checks shared by the acceleration-structure tests: agreement of one structure with the
 // brute-force oracle on a ray set, and the rejection of a ray by both queries.
 
+#include "accel/any_accel.h"
 #include "accel/brute_force.h"
 #include "support/accel_fixtures.h"
 
@@ -9,9 +10,38 @@
 
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace rtlab::test {
+
+/// Specs of row e: its defaults, and for each parameter one spec with only that parameter moved
+/// to an extreme of its range (the minimum, or the maximum where the minimum is the default).
+inline std::vector<AccelSpec> default_and_varied_specs(const AccelEntry& e) {
+    std::vector<AccelSpec> out{default_spec(e)};
+    for (std::size_t i = 0; i < e.params.size(); ++i) {
+        const ParamSpec& p = e.params[i];
+        AccelSpec s = default_spec(e);
+        if (p.kind == ParamKind::choice) {
+            s.values[i] = p.default_value == 0 ? 1 : 0;
+        } else {
+            s.values[i] = p.min != p.default_value ? p.min : p.max;
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+/// Every row of the registry with default_and_varied_specs, brute force first.
+inline std::vector<AccelSpec> registry_specs() {
+    std::vector<AccelSpec> out;
+    for (const AccelEntry& e : accel_registry()) {
+        for (AccelSpec& s : default_and_varied_specs(e)) {
+            out.push_back(std::move(s));
+        }
+    }
+    return out;
+}
 
 /// Checks that closest hit (normal and robust) and any hit (normal and robust) of accel agree
 /// with brute force on every ray: same hit or miss, same t (a different primitive only at an
