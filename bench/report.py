@@ -277,7 +277,8 @@ class Report:
                          + f" | {fmt(num(first, 'build_ms'))} | {fmt(num(first, 'bytes/prim'))}"
                          + f" | {fmt(num(first, 'sah_cost'))} |")
             self.add("", "nodes/ray and prims/ray: mean over the ray kinds.", "")
-            fig, ax = plt.subplots(figsize=(10.5, 4.8), dpi=110)
+            # Canonical specs make long labels: the legend goes below the axes, two columns.
+            fig, ax = plt.subplots(figsize=(10.5, 4.8 + 0.22 * ((len(order) + 1) // 2)), dpi=110)
             width = 0.8 / max(1, len(order))
             cmap = plt.get_cmap("tab20")
             hatches = ["//", "xx", "\\\\", ".."]
@@ -296,8 +297,7 @@ class Report:
             ax.set_ylabel("Mrays/s")
             ax.set_title(f"Traversal throughput, {scene} (hatched grey = Embree reference)")
             ax.grid(True, axis="y", alpha=0.3)
-            ax.legend(fontsize=8, ncol=2 if len(order) > 6 else 1, loc="upper left",
-                      bbox_to_anchor=(1.0, 1.0))
+            ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
             fig.text(0.01, 0.005, prov_caption(self.prov), fontsize=7, color="dimgrey")
             fig.tight_layout(rect=(0, 0.06, 1, 1))
             safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", scene)
@@ -352,7 +352,7 @@ class Report:
         else:
             self.add("_Trace time against primitive count: no trace benchmark with a `prims` "
                      "counter over two or more sizes in this run._", "")
-        fig, axes = plt.subplots(len(panels), 1, figsize=(10.5, 5.5 * len(panels)), dpi=110,
+        fig, axes = plt.subplots(len(panels), 1, figsize=(10.5, 8 * len(panels)), dpi=110,
                                  squeeze=False)
         axes = [[ax[0] for ax in axes]]
         self.add("| family | series | sizes | exponent k | time at largest n |",
@@ -384,7 +384,7 @@ class Report:
             ax.set_ylabel(ylabel + " (log)")
             ax.set_title(f"{fam} time against primitive count (k = fitted exponent)")
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+            ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.12))
         self.add("")
         fig.text(0.01, 0.005, prov_caption(self.prov), fontsize=7, color="dimgrey")
         fig.tight_layout(rect=(0, 0.06, 1, 1))
