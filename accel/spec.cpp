@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 namespace rtlab {
 
@@ -45,35 +46,6 @@ std::string known_names() {
     throw std::invalid_argument(fmt::format("--accel '{}': {}", spec, what));
 }
 
-/// The value of `text` for parameter p, or a one-line error naming spec and key.
-double parse_value(std::string_view spec, const ParamSpec& p, std::string_view text) {
-    const std::string_view key = p.key;
-    if (p.kind == ParamKind::choice) {
-        for (std::size_t i = 0; i < p.choices.size(); ++i) {
-            if (p.choices[i] == text) {
-                return static_cast<double>(i);
-            }
-        }
-        fail(spec, fmt::format("{} must be one of {}, not '{}'", key, p.range_text(), text));
-    }
-    double v = 0;
-    const char* end = text.data() + text.size();
-    const auto r = std::from_chars(text.data(), end, v);
-    if (text.empty() || r.ec != std::errc{} || r.ptr != end || !std::isfinite(v)) {
-        fail(spec, fmt::format("{} needs a number, not '{}'", key, text));
-    }
-    if (p.kind == ParamKind::integer && v != std::floor(v)) {
-        fail(spec, fmt::format("{} must be a whole number, not '{}'", key, text));
-    }
-    if (p.kind == ParamKind::real) {
-        v = static_cast<double>(static_cast<float>(v));  // the builders store floats
-    }
-    if (!(v >= p.min && v <= p.max)) {
-        fail(spec, fmt::format("{}={} is outside {}", key, text, p.range_text()));
-    }
-    return v;
-}
-
 }  // namespace
 
 ParamSpec integer_param(
@@ -93,6 +65,44 @@ ParamSpec real_param(
     ParamSpec p = integer_param(key, default_value, min, max, help);
     p.kind = ParamKind::real;
     return p;
+}
+
+ParamSpec choice_param(std::string_view key,
+                       std::size_t default_index,
+                       std::vector<std::string_view> choices,
+                       std::string_view help) {
+    ParamSpec p = integer_param(key, static_cast<double>(default_index), 0,
+                                static_cast<double>(choices.size()) - 1, help);
+    p.kind = ParamKind::choice;
+    p.choices = std::move(choices);
+    return p;
+}
+
+double ParamSpec::parse(std::string_view spec, std::string_view text) const {
+    if (kind == ParamKind::choice) {
+        for (std::size_t i = 0; i < choices.size(); ++i) {
+            if (choices[i] == text) {
+                return static_cast<double>(i);
+            }
+        }
+        fail(spec, fmt::format("{} must be one of {}, not '{}'", key, range_text(), text));
+    }
+    double v = 0;
+    const char* end = text.data() + text.size();
+    const auto r = std::from_chars(text.data(), end, v);
+    if (text.empty() || r.ec != std::errc{} || r.ptr != end || !std::isfinite(v)) {
+        fail(spec, fmt::format("{} needs a number, not '{}'", key, text));
+    }
+    if (kind == ParamKind::integer && v != std::floor(v)) {
+        fail(spec, fmt::format("{} must be a whole number, not '{}'", key, text));
+    }
+    if (kind == ParamKind::real) {
+        v = static_cast<double>(static_cast<float>(v));  // the builders store floats
+    }
+    if (!(v >= min && v <= max)) {
+        fail(spec, fmt::format("{}={} is outside {}", key, text, range_text()));
+    }
+    return v;
 }
 
 std::string ParamSpec::format(double v) const {
@@ -181,7 +191,7 @@ AccelSpec parse_accel_spec(std::string_view text) {
             fail(text, fmt::format("parameter '{}' given twice", key));
         }
         given[i] = true;
-        spec.values[i] = parse_value(text, e->params[i], item.substr(eq + 1));
+        spec.values[i] = e->params[i].parse(text, item.substr(eq + 1));
     }
     return spec;
 }

@@ -4,6 +4,7 @@
 // the benchmarks, the tests and sweep files, and every output names the canonical spec (all
 // parameters, defaults included) so a result always says exactly what ran.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -28,6 +29,10 @@ struct ParamSpec {
     std::string_view help;                  ///< one line for `rtlab list`
     std::vector<std::string_view> choices;  ///< the names of a choice parameter, in index order
 
+    /// The value written as `text` (a choice: its index); throws std::invalid_argument with one
+    /// line naming `spec` and the key when text is malformed, not finite, not whole for an
+    /// integer, outside [min, max] or not one of the choices.
+    double parse(std::string_view spec, std::string_view text) const;
     /// The value v as the canonical spec writes it ("8", "1.5", "binned").
     std::string format(double v) const;
     /// The valid range or choices, as `rtlab list` shows them ("[1, 255]", "median|binned").
@@ -41,6 +46,12 @@ ParamSpec integer_param(
 /// A real parameter (stored as float) with its default, inclusive range and help line.
 ParamSpec real_param(
     std::string_view key, double default_value, double min, double max, std::string_view help);
+
+/// A choice parameter: one of `choices` (stored as its index), default choices[default_index].
+ParamSpec choice_param(std::string_view key,
+                       std::size_t default_index,
+                       std::vector<std::string_view> choices,
+                       std::string_view help);
 
 struct AccelEntry;
 

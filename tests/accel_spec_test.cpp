@@ -74,6 +74,29 @@ TEST_CASE("bad specs are one-line errors naming the spec and the key", "[accel][
     }
 }
 
+TEST_CASE("parameter kinds parse, check and print their values", "[accel][spec]") {
+    const ParamSpec leaf = integer_param("max_leaf", 4, 1, 64, "h");
+    CHECK(leaf.parse("s", "8") == 8);
+    CHECK(leaf.format(8) == "8");
+    CHECK(leaf.range_text() == "[1, 64]");
+    CHECK_THROWS_WITH(leaf.parse("s", "65"), Catch::Contains("outside [1, 64]"));
+    CHECK_THROWS_WITH(leaf.parse("s", "1e40"), Catch::Contains("outside"));
+    const ParamSpec cost = real_param("ci", 1.5, 1e-3, 1e6, "h");
+    CHECK(cost.parse("s", "0.1") == static_cast<double>(0.1f));
+    CHECK(cost.format(cost.parse("s", "0.1")) == "0.1");
+    CHECK(cost.format(1e6) == "1e+06");
+    CHECK_THROWS_WITH(cost.parse("s", "inf"), Catch::Contains("needs a number"));
+    CHECK_THROWS_WITH(cost.parse("s", "0"), Catch::Contains("outside [0.001, 1e+06]"));
+    const ParamSpec from = choice_param("from", 1, {"median", "binned", "sweep"}, "h");
+    CHECK(from.default_value == 1);
+    CHECK(from.parse("s", "sweep") == 2);
+    CHECK(from.format(0) == "median");
+    CHECK(from.range_text() == "median|binned|sweep");
+    CHECK_THROWS_WITH(from.parse("s", "lbvh"),
+                      Catch::Contains("from must be one of median|binned|sweep, not 'lbvh'") &&
+                          Catch::Contains("--accel 's'"));
+}
+
 TEST_CASE("max_leaf reaches the builder: other trees, same answers", "[accel][spec]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 21, 2000);
     const std::vector<Rayf> rays = test::random_rays(soup, 21, 300);
