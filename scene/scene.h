@@ -149,12 +149,6 @@ decltype(auto) visit_prim_type(PrimType t, F&& f) {
     (std::make_index_sequence<prim_type_count>{});
 }
 
-/// A callable made of several lambdas, one overload each (e.g. an `emit` for shapes()).
-template <class... Fs>
-struct Overloaded : Fs... {
-    using Fs::operator()...;
-};
-
 /// One object in file order: its type and its index into that type's set.
 struct ObjectRef {
     PrimType type = PrimType::sphere;
