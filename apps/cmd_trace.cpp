@@ -5,11 +5,10 @@
 #include "apps/commands.h"
 #include "scene/scene_io.h"
 #include "trace/binary_io.h"
+#include "trace/measure.h"
 #include "trace/scene_tracer.h"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <chrono>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -34,12 +33,6 @@ struct TraceArgs {
     bool robust = false;
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 int run_trace(const TraceArgs& a) {
     std::optional<tbb::global_control> threads;
     if (a.threads > 0) {
@@ -55,66 +48,36 @@ int run_trace(const TraceArgs& a) {
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
 
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    std::vector<double> times;
-    for (int k = 0; k < a.repeat; ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        if (a.any_hit) {
-            tracer.occluded(rays, blockers);
-        } else {
-            tracer.intersect(rays, hits);
-        }
-        times.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
-    }
-    if (a.any_hit) {
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            hits[i] = blockers[i] == invalid_id ? Hit{} : Hit{0.0f, 0.0f, 0.0f, blockers[i]};
-        }
-    }
-    const auto hit_count = static_cast<std::size_t>(
-        std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.valid(); }));
-    const double trace_ms = median(times);
+    MeasureOptions opt;
+    opt.any_hit = a.any_hit;
+    opt.repeat = a.repeat;
+    opt.stats = a.stats;
+    std::vector<Hit> hits;
+    const TraceMeasurement m = measure_trace(tracer, rays, opt, &hits);
 
     nlohmann::json j;
     j["scene"] = a.scene;
     j["accel"] = accel;
     std::string methods;
-    for (const std::string& m : tracer.set_methods()) {
-        methods += (methods.empty() ? "" : ",") + m.substr(m.find('=') + 1);
+    for (const std::string& name : tracer.set_methods()) {
+        methods += (methods.empty() ? "" : ",") + name.substr(name.find('=') + 1);
     }
     j["method"] = methods;
     j["sets"] = tracer.set_methods();
     j["query"] = a.any_hit ? "any_hit" : "closest_hit";
     j["robust"] = a.robust;
     j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
-    j["rays"] = rays.size();
-    j["hits"] = hit_count;
-    j["build_ms"] = tracer.build_ms();
-    j["trace_ms"] = trace_ms;
+    j["rays"] = m.rays;
+    j["hits"] = m.hits;
+    j["build_ms"] = m.build_ms;
+    j["trace_ms"] = m.trace_ms;
     j["repeat"] = a.repeat;
-    j["mrays_per_s"] = trace_ms > 0 ? static_cast<double>(rays.size()) / (trace_ms * 1e3) : 0.0;
-    std::uint64_t bytes = 0;
-    for (const AccelInfo& info : tracer.infos()) {
-        bytes += info.bytes;
-    }
-    j["accel_bytes"] = bytes;
-    j["bytes_per_prim"] =
-        tracer.primitive_count() > 0 ? static_cast<double>(bytes) / tracer.primitive_count() : 0.0;
-    if (a.stats) {
-        // A separate pass, so counting never perturbs the timing above.
-        TraversalStats st;
-        if (a.any_hit) {
-            tracer.occluded(rays, blockers, &st);
-        } else {
-            std::vector<Hit> again(rays.size());
-            tracer.intersect(rays, again, &st);
-        }
-        const double n = rays.empty() ? 1.0 : static_cast<double>(rays.size());
-        j["nodes_per_ray"] = static_cast<double>(st.nodes) / n;
-        j["prims_per_ray"] = static_cast<double>(st.prims) / n;
+    j["mrays_per_s"] = m.mrays_per_s;
+    j["accel_bytes"] = m.accel_bytes;
+    j["bytes_per_prim"] = m.bytes_per_prim;
+    if (m.has_stats) {
+        j["nodes_per_ray"] = m.nodes_per_ray;
+        j["prims_per_ray"] = m.prims_per_ray;
     }
     if (!a.hits.empty()) {
         save_hits(a.hits, hits);

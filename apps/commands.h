@@ -42,6 +42,9 @@ Command add_render(CLI::App& root);
 /// `rtlab info`: counts, bounds, mesh statistics and features of a scene or mesh file.
 Command add_info(CLI::App& root);
 
+/// `rtlab sweep`: experiment sweeps from a JSON file, run here or as a Slurm job array.
+Command add_sweep(CLI::App& root);
+
 /// `rtlab stability`: the numerical-stability suite and its report.
 Command add_stability(CLI::App& root);
 

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
         rtlab::app::add_trace(root),      rtlab::app::add_compare(root),
         rtlab::app::add_list(root),       rtlab::app::add_info(root),
         rtlab::app::add_gen(root),        rtlab::app::add_stability(root),
-        rtlab::app::add_render(root),
+        rtlab::app::add_render(root),     rtlab::app::add_sweep(root),
     };
 
     try {

@@ -1,0 +1,113 @@
+// Expanding a sweep into cases with stable ids, and dealing them to shards.
+#include "sweep/plan.h"
+
+#include "base/error.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <fmt/format.h>
+#include <map>
+
+namespace rtlab::sweep {
+
+namespace {
+
+// FNV-1a, 64 bits (Fowler, Noll, Vo): stable across runs, builds and machines.
+std::uint64_t fnv1a(const std::string& text) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const char c : text) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+}  // namespace
+
+std::vector<Case> expand_cases(const SweepFile& s) {
+    std::vector<Case> out;
+    std::map<std::string, std::size_t> seen;
+    for (std::size_t sc = 0; sc < s.scenes.size(); ++sc) {
+        for (const std::string& spec : s.specs) {
+            for (const std::string& m : s.methods) {
+                for (const int t : s.threads) {
+                    for (const std::string& kind : s.kinds) {
+                        Case c;
+                        c.index = out.size();
+                        c.scene = sc;
+                        c.spec = spec;
+                        c.methods = m;
+                        c.threads = t;
+                        c.kind = kind;
+                        const std::string what = fmt::format(
+                            "{}|{}|{}|{}|{}|rays={},seed={},repeat={},stats={},robust={}",
+                            s.scenes[sc].key, spec, m, t, kind, s.ray_count, s.seed, s.repeat,
+                            s.stats, s.robust);
+                        c.id = fmt::format("{:016x}", fnv1a(what));
+                        const auto [it, fresh] = seen.emplace(c.id, c.index);
+                        if (!fresh) {
+                            throw Error(fmt::format("sweep: cases {} and {} are the same ({})",
+                                                    it->second, c.index, what));
+                        }
+                        out.push_back(std::move(c));
+                    }
+                }
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<std::vector<std::size_t>> deal_shards(const SweepFile& s,
+                                                  const std::vector<Case>& cases,
+                                                  std::size_t shards) {
+    std::vector<std::vector<std::size_t>> by_scene(s.scenes.size());
+    for (const Case& c : cases) {
+        by_scene[c.scene].push_back(c.index);
+    }
+    std::erase_if(by_scene, [](const auto& v) { return v.empty(); });
+    if (shards == 0) {
+        shards = by_scene.size();
+    }
+    shards = std::min(shards, cases.size());
+    std::vector<std::vector<std::size_t>> out(shards);
+    if (shards <= by_scene.size()) {
+        for (std::size_t i = 0; i < by_scene.size(); ++i) {
+            auto& dst = out[i % shards];
+            dst.insert(dst.end(), by_scene[i].begin(), by_scene[i].end());
+        }
+        return out;
+    }
+    // More shards than scenes: every scene gets at least one, the rest go by case count
+    // (largest remainder), and each scene's cases split into contiguous, near-equal runs.
+    std::vector<std::size_t> per(by_scene.size(), 1);
+    std::size_t left = shards - by_scene.size();
+    while (left > 0) {
+        std::size_t best = 0;
+        double best_load = -1;
+        for (std::size_t i = 0; i < by_scene.size(); ++i) {
+            const double load =
+                static_cast<double>(by_scene[i].size()) / static_cast<double>(per[i]);
+            if (per[i] < by_scene[i].size() && load > best_load) {
+                best = i;
+                best_load = load;
+            }
+        }
+        ++per[best];
+        --left;
+    }
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < by_scene.size(); ++i) {
+        const std::size_t n = by_scene[i].size();
+        for (std::size_t k = 0; k < per[i]; ++k) {
+            const std::size_t lo = n * k / per[i];
+            const std::size_t hi = n * (k + 1) / per[i];
+            out[next++].assign(by_scene[i].begin() + static_cast<std::ptrdiff_t>(lo),
+                               by_scene[i].begin() + static_cast<std::ptrdiff_t>(hi));
+        }
+    }
+    out.resize(next);
+    return out;
+}
+
+}  // namespace rtlab::sweep

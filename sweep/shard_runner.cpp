@@ -1,0 +1,242 @@
+// run_shard: measures a shard's cases through trace/measure.h and records them.
+#include "sweep/shard_runner.h"
+
+#include "accel/any_accel.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "datasets_gen/generators.h"
+#include "scene/scene_io.h"
+#include "sweep/provenance.h"
+#include "trace/measure.h"
+#include "trace/ray_gen.h"
+#include "trace/scene_tracer.h"
+
+#include <cstdlib>
+#include <fmt/format.h>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+namespace rtlab::sweep {
+
+namespace {
+
+std::vector<std::string> split_commas(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        if (!item.empty()) {
+            out.push_back(item);
+        }
+    }
+    return out;
+}
+
+// What a shard keeps between cases: the current scene and its ray sets, the current tracer.
+struct Workspace {
+    std::size_t scene_index = SIZE_MAX;
+    std::optional<Scene> scene;
+    std::string scene_error;  // non-empty: the scene failed to load, every case of it fails
+    std::map<std::string, std::vector<Rayf>> rays;
+    std::string tracer_key;
+    std::unique_ptr<SceneTracer> tracer;
+};
+
+Scene make_scene(const SceneSource& src) {
+    if (!src.generator.empty()) {
+        gen::GenOptions o;
+        o.size = src.size;
+        o.as_mesh = src.as_mesh;
+        o.tess = gen::parse_sphere_tess(src.tess);
+        o.seed = src.seed;
+        return gen::generate(src.generator, o);
+    }
+    return load_scene(src.path);
+}
+
+void use_scene(Workspace& w, const SweepFile& s, std::size_t index) {
+    if (w.scene_index == index) {
+        return;
+    }
+    w = Workspace{};
+    w.scene_index = index;
+    try {
+        w.scene = make_scene(s.scenes[index]);
+    } catch (const std::exception& e) {
+        w.scene_error = e.what();
+    }
+}
+
+nlohmann::json params_of(const std::string& spec) {
+    const AccelSpec a = parse_accel_spec(spec);
+    nlohmann::json p = nlohmann::json::object();
+    for (std::size_t i = 0; i < a.entry->params.size(); ++i) {
+        const ParamSpec& ps = a.entry->params[i];
+        if (ps.kind == ParamKind::choice) {
+            p[std::string(ps.key)] = ps.format(a.values[i]);
+        } else if (ps.kind == ParamKind::integer) {
+            p[std::string(ps.key)] = static_cast<std::int64_t>(a.values[i]);
+        } else {
+            p[std::string(ps.key)] = a.values[i];
+        }
+    }
+    return p;
+}
+
+// Measures case c into j (throws on failure; the caller records the error).
+void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, nlohmann::json& j) {
+    if (!w.scene_error.empty()) {
+        throw Error(w.scene_error);
+    }
+    auto rays_it = w.rays.find(c.kind);
+    if (rays_it == w.rays.end()) {
+        rays_it =
+            w.rays.emplace(c.kind, make_rays(*w.scene, parse_ray_kind(c.kind), s.ray_count, s.seed))
+                .first;
+    }
+    const std::string key = fmt::format("{}|{}|{}", c.spec, c.methods, threads);
+    if (w.tracer_key != key) {
+        w.tracer.reset();
+        w.tracer_key.clear();
+        TraceSetup setup;
+        setup.accel = c.spec;
+        setup.methods = split_commas(c.methods);
+        setup.robust = s.robust;
+        w.tracer = std::make_unique<SceneTracer>(*w.scene, setup);
+        w.tracer_key = key;
+    }
+    MeasureOptions opt;
+    opt.any_hit = c.any_hit();
+    opt.repeat = s.repeat;
+    opt.stats = s.stats;
+    const TraceMeasurement m = measure_trace(*w.tracer, rays_it->second, opt);
+    std::string sets;
+    for (const std::string& x : w.tracer->set_methods()) {
+        sets += fmt::format("{}{}", sets.empty() ? "" : " ", x);
+    }
+    j["sets"] = sets;
+    j["primitives"] = w.tracer->primitive_count();
+    j["rays"] = m.rays;
+    j["hits"] = m.hits;
+    j["build_ms"] = m.build_ms;
+    j["trace_ms"] = m.trace_ms;
+    j["trace_ms_runs"] = m.trace_ms_runs;
+    j["mrays_per_s"] = m.mrays_per_s;
+    j["accel_bytes"] = m.accel_bytes;
+    j["bytes_per_prim"] = m.bytes_per_prim;
+    j["nodes"] = m.nodes;
+    j["leaves"] = m.leaves;
+    j["max_depth"] = m.max_depth;
+    j["sah_cost"] = m.sah_cost;
+    if (m.has_stats) {
+        j["nodes_per_ray"] = m.nodes_per_ray;
+        j["prims_per_ray"] = m.prims_per_ray;
+    }
+}
+
+void write_shard(const std::filesystem::path& file, const std::vector<nlohmann::json>& lines) {
+    std::string text;
+    for (const nlohmann::json& l : lines) {
+        text += l.dump() + "\n";
+    }
+    write_file_atomically(file, text);
+}
+
+}  // namespace
+
+int default_cpus() {
+    if (const char* v = std::getenv("SLURM_CPUS_PER_TASK")) {
+        const int n = std::atoi(v);
+        if (n > 0) {
+            return n;
+        }
+    }
+    return tbb::info::default_concurrency();
+}
+
+ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt) {
+    if (k >= p.shards.size()) {
+        throw Error(fmt::format("sweep: shard {} does not exist ({} shards: 0..{})", k,
+                                p.shards.size(), p.shards.size() - 1));
+    }
+    const std::filesystem::path file = shard_file(p.dir, k);
+    const std::map<std::string, nlohmann::json> known = read_results(p.dir);
+    // Keep this shard's done lines; failed and missing cases run (again).
+    std::vector<nlohmann::json> lines;
+    ShardOutcome out;
+    std::vector<const Case*> todo;
+    for (const std::size_t i : p.shards[k]) {
+        const Case& c = p.cases[i];
+        const auto it = known.find(c.id);
+        if (it != known.end() && it->second.value("status", "") == "done") {
+            lines.push_back(it->second);
+            ++out.skipped;
+        } else {
+            todo.push_back(&c);
+        }
+    }
+    const nlohmann::json prov = run_provenance();
+    const int cpus = opt.cpus > 0 ? opt.cpus : default_cpus();
+    Workspace w;
+    for (const Case* c : todo) {
+        const int threads = c->threads > 0 ? c->threads : cpus;
+        nlohmann::json j;
+        j["case"] = c->id;
+        j["index"] = c->index;
+        j["shard"] = k;
+        j["scene"] = p.sweep.scenes[c->scene].label;
+        j["scene_key"] = p.sweep.scenes[c->scene].key;
+        j["spec"] = c->spec;
+        j["structure"] = c->spec.substr(0, c->spec.find(','));
+        j["params"] = params_of(c->spec);
+        j["methods"] = c->methods.empty() ? "default" : c->methods;
+        j["kind"] = c->kind;
+        j["query"] = c->any_hit() ? "any_hit" : "closest_hit";
+        j["threads"] = c->threads;
+        j["ray_count"] = p.sweep.ray_count;
+        j["repeat"] = p.sweep.repeat;
+        nlohmann::json pv = prov;
+        pv["start"] = utc_now();
+        pv["seed"] = p.sweep.seed;
+        pv["threads_used"] = threads;
+        try {
+            const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                            static_cast<std::size_t>(threads));
+            use_scene(w, p.sweep, c->scene);
+            measure_case(w, p.sweep, *c, threads, j);
+            j["status"] = "done";
+            ++out.done;
+        } catch (const std::exception& e) {
+            j["status"] = "failed";
+            j["error"] = e.what();
+            w.tracer.reset();
+            w.tracer_key.clear();
+            ++out.failed;
+        }
+        pv["end"] = utc_now();
+        pv["end_unix"] = unix_now();
+        j["provenance"] = pv;
+        if (opt.log != nullptr) {
+            *opt.log << fmt::format(
+                            "[shard {}] {} {} {} {} {}: {}\n", k, c->id,
+                            p.sweep.scenes[c->scene].label, c->spec,
+                            j["methods"].get<std::string>(), c->kind,
+                            j["status"] == "done"
+                                ? fmt::format("{:.3f} Mrays/s", j["mrays_per_s"].get<double>())
+                                : fmt::format("FAILED: {}", j["error"].get<std::string>()))
+                     << std::flush;
+        }
+        lines.push_back(std::move(j));
+        write_shard(file, lines);
+    }
+    if (todo.empty() && !std::filesystem::exists(file) && !lines.empty()) {
+        write_shard(file, lines);
+    }
+    return out;
+}
+
+}  // namespace rtlab::sweep

@@ -1,0 +1,33 @@
+# rtlab sweep contracts (sourced by tests/cli_test.sh: uses expect_ok, expect_error, $RTLAB, $tmp).
+sweeps=$(cd "$(dirname "${BASH_SOURCE[0]}")/../sweeps" && pwd)
+expect_ok "sweep help" sweep --help
+expect_ok "sweep plan" sweep plan "$sweeps/small.json"
+cp "$tmp/out" "$tmp/plan1"
+expect_ok "sweep plan again" sweep plan "$sweeps/small.json"
+cmp -s "$tmp/plan1" "$tmp/out" || { echo "FAIL (sweep plan): two plans of one file differ"; fail=1; }
+grep -q "24 cases" "$tmp/plan1" || { echo "FAIL (sweep plan): not 24 cases"; fail=1; }
+expect_ok "sweep plan shards" sweep plan "$sweeps/small.json" --shards 5 --json
+# Validation errors name the file and the place, before anything runs or is written.
+bad() {  # bad NAME SED-EXPRESSION: a broken copy of small.json must fail plan, run and submit
+    sed "$2" "$sweeps/small.json" >"$tmp/$1.json"
+    expect_error "sweep plan $1" sweep plan "$tmp/$1.json"
+    expect_error "sweep run $1" sweep run "$tmp/$1.json" -o "$tmp/$1.dir"
+    expect_error "sweep submit $1" sweep submit "$tmp/$1.json" --slurm --dry-run -o "$tmp/$1.dir"
+    [[ -e $tmp/$1.dir ]] && { echo "FAIL (sweep $1): $tmp/$1.dir was created"; fail=1; }
+    grep -q "$tmp/$1.json: " "$tmp/err" || { echo "FAIL (sweep $1): error does not name the file: $(cat "$tmp/err")"; fail=1; }
+}
+bad unknown-generator 's/"generator": "flake", "size": 2/"generator": "teapot"/'
+bad unknown-key 's/"max_leaf"/"max_leafs"/'
+bad out-of-range 's/\[1, 4\]/[1, 4000]/'
+bad unknown-method 's/"segura_feito"/"segura"/'
+bad unknown-kind 's/"shadow"/"umbra"/'
+bad unknown-field 's/"repeat"/"repeats"/'
+bad not-json 's/"name": "small",/"name": "small"/'
+expect_error "sweep status of no sweep" sweep status "$tmp"
+expect_error "sweep merge of no sweep" sweep merge "$tmp"
+expect_error "sweep submit without --slurm" sweep submit "$sweeps/small.json" --dry-run
+expect_ok "sweep submit dry run" sweep submit "$sweeps/small.json" --slurm --dry-run \
+    --max-parallel 2 -o "$tmp/dry"
+grep -q -- "--array=0-1%2" "$tmp/out" || { echo "FAIL (sweep submit dry run): no --array=0-1%2"; fail=1; }
+grep -q -- "afterany" "$tmp/out" || { echo "FAIL (sweep submit dry run): no afterany"; fail=1; }
+[[ -e $tmp/dry ]] && { echo "FAIL (sweep submit dry run): wrote $tmp/dry"; fail=1; }
