@@ -11,6 +11,9 @@ absent, so hand-written sections survive):
   - scaling: build time (and trace time, when the run has a size sweep) against primitive count,
     log-log, with the fitted exponent;
   - heat maps: out/heat-<accel>.png (from `rtlab render --aov heatmap`) when present.
+With --sweep T.json (a table of `rtlab sweep merge`) it writes the sweep's report instead
+(bench/sweep_report.py): tables and throughput plots per scene, and line plots of Mrays/s and SAH
+cost along every swept parameter (e.g. max_leaf), to --out (the whole file) and --plots.
 Every table and plot records the command, git revision, compiler and CPU. A benchmark family
 missing from the run is skipped with a note.
 
@@ -536,6 +539,7 @@ def main():
                     help="Markdown file; the part between the report markers is replaced")
     ap.add_argument("--plots", default="docs/plots", help="folder for the PNG plots")
     ap.add_argument("--heatmaps", default="out", help="folder searched for heat-<accel>.png")
+    ap.add_argument("--sweep", help="report a merged sweep table (rtlab sweep merge -o T: T.json)")
     ap.add_argument("--self-test", action="store_true",
                     help="run on synthetic data in a temporary folder and check the output")
     args = ap.parse_args()
@@ -543,6 +547,16 @@ def main():
     plt = import_pyplot()
     if args.self_test:
         return self_test(plt)
+    if args.sweep:
+        from sweep_report import sweep_report
+        with open(args.sweep) as f:
+            table = json.load(f)
+        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+        with open(args.out + ".tmp", "w") as f:
+            f.write(sweep_report(table, args.sweep, args.plots, plt) + "\n")
+        os.replace(args.out + ".tmp", args.out)
+        print(f"report: wrote {args.out} (plots in {args.plots})", file=sys.stderr)
+        return 0
 
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     if args.json:

@@ -40,9 +40,9 @@ std::vector<Case> expand_cases(const SweepFile& s) {
                         c.threads = t;
                         c.kind = kind;
                         const std::string what = fmt::format(
-                            "{}|{}|{}|{}|{}|rays={},seed={},repeat={},stats={},robust={}",
+                            "{}|{}|{}|{}|{}|rays={},seed={},repeat={},warmup={},stats={},robust={}",
                             s.scenes[sc].key, spec, m, t, kind, s.ray_count, s.seed, s.repeat,
-                            s.stats, s.robust);
+                            s.warmup, s.stats, s.robust);
                         c.id = fmt::format("{:016x}", fnv1a(what));
                         const auto [it, fresh] = seen.emplace(c.id, c.index);
                         if (!fresh) {

@@ -112,6 +112,7 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
     MeasureOptions opt;
     opt.any_hit = c.any_hit();
     opt.repeat = s.repeat;
+    opt.warmup = s.warmup;
     opt.stats = s.stats;
     const TraceMeasurement m = measure_trace(*w.tracer, rays_it->second, opt);
     std::string sets;

@@ -19,9 +19,9 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-const std::set<std::string> top_keys{"name",    "seed",   "scenes",   "structures",
-                                     "methods", "rays",   "threads",  "repeat",
-                                     "stats",   "robust", "base_dir", "comment"};
+const std::set<std::string> top_keys{"name",   "seed",     "scenes", "structures", "methods",
+                                     "rays",   "threads",  "repeat", "warmup",     "stats",
+                                     "robust", "base_dir", "comment"};
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) {
     throw Error(where + ": " + what);
@@ -300,6 +300,9 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
     }
     if (j.contains("repeat")) {
         s.repeat = static_cast<int>(get_int(j["repeat"], at("repeat"), 1, 10000));
+    }
+    if (j.contains("warmup")) {
+        s.warmup = static_cast<int>(get_int(j["warmup"], at("warmup"), 0, 10000));
     }
     if (j.contains("stats")) {
         s.stats = get_bool(j["stats"], at("stats"));

@@ -37,6 +37,7 @@ struct SweepFile {
     std::size_t ray_count = 10000;
     std::vector<int> threads{0};  ///< 0: every core the run has (its allocation on Slurm)
     int repeat = 3;               ///< timed runs per case; the median is reported
+    int warmup = 1;               ///< untimed runs before them
     bool stats = true;            ///< counting pass (nodes/ray, prims/ray)
     bool robust = false;          ///< conservative box tests in traversal
     /// The file as loaded (comments dropped) plus "base_dir", the folder scene files are

@@ -22,6 +22,13 @@ TraceMeasurement measure_trace(const SceneTracer& tracer,
     std::vector<Hit> hits(rays.size());
     std::vector<std::uint32_t> blockers(rays.size());
     TraceMeasurement m;
+    for (int k = 0; k < opt.warmup; ++k) {
+        if (opt.any_hit) {
+            tracer.occluded(rays, blockers);
+        } else {
+            tracer.intersect(rays, hits);
+        }
+    }
     for (int k = 0; k < std::max(opt.repeat, 1); ++k) {
         const auto t0 = std::chrono::steady_clock::now();
         if (opt.any_hit) {

@@ -18,6 +18,7 @@ namespace rtlab {
 struct MeasureOptions {
     bool any_hit = false;  ///< occlusion queries instead of closest hit
     int repeat = 1;        ///< timed runs; the median is reported
+    int warmup = 0;        ///< untimed runs first (thread pool start-up, caches, page faults)
     bool stats = false;    ///< add a counting pass (nodes and primitive tests per ray)
 };
 
