@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -81,7 +82,7 @@ nlohmann::json params_of(const std::string& spec) {
         } else if (ps.kind == ParamKind::integer) {
             p[std::string(ps.key)] = static_cast<std::int64_t>(a.values[i]);
         } else {
-            p[std::string(ps.key)] = a.values[i];
+            p[std::string(ps.key)] = std::stod(ps.format(a.values[i]));  // as the spec writes it
         }
     }
     return p;

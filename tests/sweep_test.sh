@@ -22,6 +22,14 @@ grep -q "24 cases: 21 done, 3 failed, 0 missing" "$tmp/a.status" || { cat "$tmp/
 head -n 1 "$tmp/a/merged.csv" | grep -q "p_max_leaf" || fail "merged.csv has no p_max_leaf column"
 [[ $(wc -l <"$tmp/a/merged.csv") -eq 25 ]] || fail "merged.csv is not 24 rows and a header"
 
+# The report: a table per scene and the max_leaf line plot.
+if python3 -c "import matplotlib" 2>/dev/null; then
+    python3 "$here/../bench/report.py" --sweep "$tmp/a/merged.json" --out "$tmp/a/report.md" \
+        --plots "$tmp/a/plots" 2>/dev/null || fail "bench/report.py --sweep"
+    [[ -s $tmp/a/plots/sweep-bvh_binned-max_leaf.png ]] || fail "no max_leaf plot"
+    grep -q "^### flake2" "$tmp/a/report.md" || fail "no flake2 table in the report"
+fi
+
 # Re-running a finished sweep measures nothing again.
 "$RTLAB" sweep run "$small" -o "$tmp/a" --jobs 2 2>"$tmp/a2.err"
 grep -q "21 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
