@@ -18,7 +18,7 @@ bad() {  # bad NAME SED-EXPRESSION: a broken copy of small.json must fail plan, 
 }
 bad unknown-generator 's/"generator": "flake", "size": 2/"generator": "teapot"/'
 bad unknown-key 's/"max_leaf"/"max_leafs"/'
-bad out-of-range 's/\[1, 4\]/[1, 4000]/'
+bad out-of-range 's/\[1, 4\]/[1, 0]/'
 bad unknown-method 's/"segura_feito"/"segura"/'
 bad unknown-kind 's/"shadow"/"umbra"/'
 bad unknown-field 's/"repeat"/"repeats"/'
