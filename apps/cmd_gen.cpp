@@ -1,6 +1,7 @@
 // rtlab gen: writes a procedural scene (SPD sphere flake and family, stress scenes) as scene JSON
 // with its meshes beside it, or as one mesh file when the output has a mesh extension.
 #include "apps/commands.h"
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "datasets_gen/generators.h"
 #include "datasets_gen/memory_guard.h"
@@ -20,6 +21,7 @@ namespace rtlab::app {
 namespace {
 
 struct GenArgs {
+    CLI::Option* tess_opt = nullptr;
     std::string name;
     int size = -1;
     std::string as = "spheres";
@@ -59,6 +61,12 @@ int run_gen(const GenArgs& a) {
     if (!mesh_file && out.extension() != ".json") {
         throw Error(out.string() + ": output must be .json or a mesh file (.ply .obj .off .stl)");
     }
+    if (a.tess_opt->count() > 0 && !mesh_file && a.as != "mesh") {
+        throw Error(
+            "gen: --tess only applies to tessellated spheres (--as mesh or a mesh output "
+            "file)");
+    }
+    check_output_path(out);
     gen::GenOptions o;
     o.size = a.size;
     o.as_mesh = mesh_file || a.as == "mesh";
@@ -97,8 +105,8 @@ Command add_gen(CLI::App& root) {
         ->check(CLI::Range(0, 64));
     sub->add_option("--as", args->as, "Spheres as analytic spheres or tessellated meshes")
         ->check(CLI::IsMember({"spheres", "mesh"}));
-    sub->add_option("--tess", args->tess,
-                    "Sphere tessellation: uv:UxV or cube:N (default uv:16x8)");
+    args->tess_opt = sub->add_option("--tess", args->tess,
+                                     "Sphere tessellation: uv:UxV or cube:N (default uv:16x8)");
     sub->add_option("--seed", args->seed, "Seed of the random generators (default 1)");
     sub->add_option("--max-memory", args->max_memory_mib,
                     "Refuse sizes whose estimate exceeds this many MiB (default half of RAM)");

@@ -1,6 +1,8 @@
 // rtlab rays: writes a deterministic ray set for a scene (primary, shadow, diffuse, random) as a
 // raw little-endian float32 file of 32-byte records.
 #include "apps/commands.h"
+#include "base/atomic_file.h"
+#include "datasets_gen/memory_guard.h"
 #include "scene/scene_io.h"
 #include "trace/binary_io.h"
 #include "trace/ray_gen.h"
@@ -19,7 +21,15 @@ struct RaysArgs {
     std::size_t count = 65536;
     std::uint64_t seed = 1;
     std::string out;
+    std::uint64_t max_memory_mib = 0;
 };
+
+/// Peak bytes per ray: the ray vector (32; the file is written in chunks); secondary kinds also
+/// hold twice as many primary rays and their hits while searching for surface points
+/// (2 x (32 + 16)).
+std::uint64_t bytes_per_ray(RayKind kind) {
+    return kind == RayKind::shadow || kind == RayKind::diffuse ? 128 : 32;
+}
 }  // namespace
 
 Command add_rays(CLI::App& root) {
@@ -35,10 +45,22 @@ Command add_rays(CLI::App& root) {
     sub->add_option("--count", a->count, "Number of rays (default 65536)")
         ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
     sub->add_option("--seed", a->seed, "Seed (default 1)");
-    sub->add_option("-o,--output", a->out, "Ray file to write")->required();
+    sub->add_option("-o,--output", a->out,
+                    "Ray file to write (a FIFO or device is written into; a symbolic link's "
+                    "target is replaced)")
+        ->required();
+    sub->add_option("--max-memory", a->max_memory_mib,
+                    "Refuse counts whose estimate exceeds this many MiB (default half of RAM)");
     return {sub, [a] {
-                const Scene scene = load_scene(a->scene);
                 const RayKind kind = parse_ray_kind(a->kind);
+                const std::uint64_t limit =
+                    a->max_memory_mib != 0
+                        ? gen::saturating_mul(a->max_memory_mib, std::uint64_t{1} << 20)
+                        : gen::default_memory_limit();
+                gen::check_memory(fmt::format("rays --count {}", a->count),
+                                  gen::saturating_mul(a->count, bytes_per_ray(kind)), limit);
+                check_output_path(a->out);
+                const Scene scene = load_scene(a->scene);
                 const std::vector<Rayf> rays = make_rays(scene, kind, a->count, a->seed);
                 save_rays(a->out, rays);
                 std::cerr << fmt::format("rtlab rays: wrote {} {} rays to {}\n", rays.size(),

@@ -4,8 +4,10 @@
 #include "accel/spec.h"
 #include "apps/args.h"
 #include "apps/commands.h"
+#include "apps/method_check.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "datasets_gen/memory_guard.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "trace/scene_tracer.h"
@@ -14,8 +16,10 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -56,7 +60,34 @@ struct RenderArgs {
     CLI::Option* width_opt = nullptr;
     CLI::Option* height_opt = nullptr;
     CLI::Option* depth_opt = nullptr;
+    CLI::Option* epsilon_opt = nullptr;
+    std::uint64_t max_memory_mib = 0;
 };
+
+/// Peak image memory in bytes of a width x height render: the sample grid (12 B per pixel, one
+/// more row and column in SPD mode), the averaged SPD image (12 B), the copy shown (12 B) and the
+/// writer's buffer (EXR 12 B, PNG 3 B per pixel).
+std::uint64_t render_bytes(std::uint64_t w, std::uint64_t h, bool spd, bool exr) {
+    const std::uint64_t px = gen::saturating_mul(w, h);
+    const std::uint64_t grid = gen::saturating_mul(spd ? (w + 1) * (h + 1) : px, 12);
+    const std::uint64_t per_pixel = (spd ? 12 : 0) + 12 + (exr ? 12 : 3);
+    return gen::saturating_add(grid, gen::saturating_mul(px, per_pixel));
+}
+
+/// Replaces NaN and infinite pixel components by 0 (black), so no image holds them; returns the
+/// number of pixels changed.
+std::size_t clear_non_finite(Image& img) {
+    std::size_t n = 0;
+    for (Vec3f& p : img.pixels) {
+        if (!is_finite(p)) {
+            ++n;
+            for (std::size_t c = 0; c < 3; ++c) {
+                p[c] = std::isfinite(p[c]) ? p[c] : 0.0f;
+            }
+        }
+    }
+    return n;
+}
 
 // A one-line progress bar with ETA on stderr, redrawn at most ten times a second.
 class ProgressBar {
@@ -103,6 +134,10 @@ int run_render(const RenderArgs& a) {
     if (a.output.empty() && !a.explain) {
         throw Error("render: -o OUT is required (or --explain alone)");
     }
+    if (a.epsilon_opt->count() > 0 && a.offset != "epsilon") {
+        throw Error("render: --epsilon only applies with --offset epsilon (--offset is '" +
+                    a.offset + "')");
+    }
     if (a.spectral && a.no_spectral) {
         throw Error("render: --spectral and --no-spectral contradict each other");
     }
@@ -112,11 +147,10 @@ int run_render(const RenderArgs& a) {
             throw Error(a.output + ": unsupported image extension '" + out.extension().string() +
                         "' (use .png or .exr)");
         }
-        const std::filesystem::path dir =
-            out.parent_path().empty() ? std::filesystem::path(".") : out.parent_path();
-        if (!std::filesystem::is_directory(dir)) {
-            throw Error(a.output + ": directory " + dir.string() + " does not exist");
-        }
+        check_output_path(out);
+    }
+    if (!a.stats_json.empty()) {
+        check_output_path(a.stats_json);  // before the work, not after it
     }
     std::optional<tbb::global_control> threads;
     if (a.threads > 0) {
@@ -148,6 +182,17 @@ int run_render(const RenderArgs& a) {
 
     const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
     const Scene scene = load_scene(a.scene);
+    {
+        const std::uint64_t w =
+            rs.width > 0 ? std::uint64_t(rs.width) : std::uint64_t(scene.camera.width);
+        const std::uint64_t h =
+            rs.height > 0 ? std::uint64_t(rs.height) : std::uint64_t(scene.camera.height);
+        const bool exr = std::filesystem::path(a.output).extension() == ".exr";
+        gen::check_memory(fmt::format("render {}x{}", w, h), render_bytes(w, h, rs.spd, exr),
+                          a.max_memory_mib != 0
+                              ? gen::saturating_mul(a.max_memory_mib, std::uint64_t{1} << 20)
+                              : gen::default_memory_limit());
+    }
     const RenderPlan plan = plan_render(scene, rs);
     if (a.explain) {
         print_explain(a.scene, plan);
@@ -158,8 +203,10 @@ int run_render(const RenderArgs& a) {
     TraceSetup setup;
     setup.accel = accel;
     setup.methods = split_commas(a.method);
+    check_one_method_per_family(setup.methods);
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
+    check_methods_used(tracer, setup.methods, "render");
 
     ProgressBar bar;
     if (isatty(2) != 0) {
@@ -179,6 +226,13 @@ int run_render(const RenderArgs& a) {
         for (Vec3f& p : shown.pixels) {
             p = far > 0 ? p / far : p;
         }
+    }
+    const std::size_t non_finite = clear_non_finite(shown);
+    if (non_finite > 0) {
+        std::cerr << fmt::format(
+            "rtlab render: {} pixels were NaN or infinite (light or material "
+            "values too large for float?); written as black\n",
+            non_finite);
     }
     write_image(shown, a.output, rs.aov == Aov::color);
 
@@ -222,6 +276,7 @@ int run_render(const RenderArgs& a) {
                      {"refracted", st.refracted},
                      {"total", st.total()}};
         j["hits"] = st.hits;
+        j["non_finite_pixels"] = non_finite;
         j["render_ms"] = st.render_ms;
         j["build_ms"] = st.build_ms;
         j["mrays_per_s"] = mrays;
@@ -276,8 +331,9 @@ Command add_render(CLI::App& root) {
                     "How secondary rays leave surfaces: none, epsilon (fixed --epsilon) or ulp "
                     "(Waechter & Binder, default)")
         ->check(CLI::IsMember({"none", "epsilon", "ulp"}));
-    sub->add_option("--epsilon", a->epsilon, "World-space offset for --offset epsilon (1e-4)")
-        ->check(CLI::Range(0.0f, 1e6f));
+    a->epsilon_opt =
+        sub->add_option("--epsilon", a->epsilon, "World-space offset for --offset epsilon (1e-4)")
+            ->check(CLI::Range(0.0f, 1e6f));
     sub->add_option(
            "--aov", a->aov,
            "What to write: color, depth (hit distance; in PNG scaled so the farthest hit is "
@@ -287,6 +343,9 @@ Command add_render(CLI::App& root) {
     sub->add_option("--threads", a->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     sub->add_option("--stats-json", a->stats_json, "Also write the statistics as JSON to FILE");
+    sub->add_option("--max-memory", a->max_memory_mib,
+                    "Refuse image sizes whose estimate exceeds this many MiB (default half of "
+                    "RAM)");
     sub->add_flag("--spd", a->spd,
                   "SPD mode: 512x512 from rays through the 513x513 pixel corners (each pixel the "
                   "mean of its 4 corners), max depth 5");

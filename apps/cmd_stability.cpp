@@ -3,6 +3,7 @@
 // so `rtlab trace` can be checked on them.
 #include "apps/args.h"
 #include "apps/commands.h"
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "mesh/mesh_io.h"
 #include "stability/fixtures.h"
@@ -38,6 +39,11 @@ int run_stability(const StabilityArgs& a) {
             std::cout << fmt::format("{:<14} {}\n", c.name, c.description);
         }
         return 0;
+    }
+    for (const std::string& out : {a.markdown, a.json}) {
+        if (!out.empty()) {
+            check_output_path(out);  // before the work, not after it
+        }
     }
     stab::Options opt;
     opt.rays = a.rays;
@@ -133,7 +139,9 @@ Command add_stability(CLI::App& root) {
     CLI::App* sub = root.add_subcommand(
         "stability",
         "Run the numerical-stability suite (leaks, degenerate and grazing rays, far and small "
-        "geometry, self-intersection, ...) and write the report (docs/stability.md)");
+        "geometry, self-intersection, ...); prints the markdown report on stdout, or writes it "
+        "with "
+        "--markdown FILE / --json FILE (scripts/stability regenerates docs/stability.md)");
     sub->add_option("--case", a->cases, "Cases to run, comma-separated (default: all; see --list)");
     sub->add_option("--rays", a->rays, "Rays per subject and precision (default 10000)")
         ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));

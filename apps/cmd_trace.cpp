@@ -3,6 +3,8 @@
 #include "accel/spec.h"
 #include "apps/args.h"
 #include "apps/commands.h"
+#include "apps/method_check.h"
+#include "base/atomic_file.h"
 #include "scene/scene_io.h"
 #include "trace/binary_io.h"
 #include "trace/measure.h"
@@ -40,13 +42,18 @@ int run_trace(const TraceArgs& a) {
                         static_cast<std::size_t>(a.threads));
     }
     const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
+    if (!a.hits.empty()) {
+        check_output_path(a.hits);
+    }
     const Scene scene = load_scene(a.scene);
     const std::vector<Rayf> rays = load_rays(a.rays);
     TraceSetup setup;
     setup.accel = accel;
     setup.methods = split_commas(a.method);
+    check_one_method_per_family(setup.methods);
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
+    check_methods_used(tracer, setup.methods, "trace");
 
     MeasureOptions opt;
     opt.any_hit = a.any_hit;

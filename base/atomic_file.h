@@ -1,46 +1,284 @@
 #pragma once
-// Writing output files completely or not at all: write a temporary file beside the target, then
-// rename it over the target (rename is atomic within one file system).
+// Writing output files completely or not at all, without clobbering what is not ours:
+//  - a regular file (or a new one) is written to a uniquely named temporary file in the target's
+//    folder, which is renamed over the target when complete (atomic within one file system) and
+//    removed on any error, and on SIGINT/SIGTERM (see install_interrupt_cleanup);
+//  - a symbolic link is followed (to its final target), so the target is replaced and the link
+//    stays a link;
+//  - a FIFO, character or block device (e.g. /dev/null, /dev/stdout) is written into directly: it
+//    is never replaced or removed.
+// check_output_path() runs the same checks before any work starts, so an unwritable output fails
+// in the first second rather than after an hour of computation.
 
 #include "base/error.h"
 
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
 #include <string_view>
+#include <sys/stat.h>
 #include <system_error>
+#include <unistd.h>
 
 namespace rtlab {
 
-/// Calls write(path_of_temporary) and renames the temporary over `file` when it returns; on an
-/// exception the temporary is removed, the target is left untouched, and the exception passes on.
+namespace detail {
+
+/// Temporary files currently being written, for the signal handler (fixed size, lock-free, so
+/// the handler only reads plain memory and calls unlink, which is async-signal-safe).
+struct TemporarySlot {
+    std::atomic<int> state{0};  ///< 0 free, 1 being filled in, 2 holds a path to remove
+    std::array<char, 4096> path{};
+};
+inline constexpr std::size_t max_temporaries = 64;
+inline std::array<TemporarySlot, max_temporaries> temporary_slots;
+inline std::array<char, 64> interrupt_program{'r', 't', 'l', 'a', 'b', '\0'};
+inline std::atomic<bool> interrupt_installed{false};
+
+inline void write_stderr(const char* s) {
+    std::size_t n = std::strlen(s);
+    while (n > 0) {
+        const ssize_t w = ::write(STDERR_FILENO, s, n);
+        if (w <= 0) {
+            return;
+        }
+        s += w;
+        n -= static_cast<std::size_t>(w);
+    }
+}
+
+extern "C" inline void on_interrupt(int sig) {
+    for (TemporarySlot& slot : temporary_slots) {
+        if (slot.state.load(std::memory_order_acquire) == 2) {
+            ::unlink(slot.path.data());
+        }
+    }
+    write_stderr(interrupt_program.data());
+    write_stderr(sig == SIGINT ? ": interrupted by SIGINT; unfinished output removed\n"
+                               : ": terminated by SIGTERM; unfinished output removed\n");
+    ::_exit(128 + sig);
+}
+
+/// Registers a temporary file for removal on SIGINT/SIGTERM; returns its slot, or
+/// max_temporaries when it cannot be tracked (path too long, too many at once): such a file is
+/// still removed on errors, only not on a signal.
+inline std::size_t register_temporary(const std::filesystem::path& tmp) {
+    const std::string s = tmp.string();
+    if (s.size() >= TemporarySlot{}.path.size()) {
+        return max_temporaries;
+    }
+    for (std::size_t i = 0; i < max_temporaries; ++i) {
+        TemporarySlot& slot = temporary_slots[i];
+        int expected = 0;
+        if (slot.state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) {
+            std::memcpy(slot.path.data(), s.c_str(), s.size() + 1);
+            slot.state.store(2, std::memory_order_release);
+            return i;
+        }
+    }
+    return max_temporaries;
+}
+
+inline void unregister_temporary(std::size_t i) {
+    if (i < max_temporaries) {
+        temporary_slots[i].state.store(0, std::memory_order_release);
+    }
+}
+
+/// Follows symbolic links to the final target (which may not exist yet).
+inline std::filesystem::path follow_links(const std::filesystem::path& file) {
+    std::filesystem::path p = file;
+    for (int hops = 0; hops < 40; ++hops) {
+        std::error_code ec;
+        if (!std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec))) {
+            return p;
+        }
+        const std::filesystem::path to = std::filesystem::read_symlink(p, ec);
+        if (ec) {
+            throw Error(file.string() + ": cannot read symbolic link (" + ec.message() + ")");
+        }
+        p = to.is_absolute() ? to : p.parent_path() / to;
+    }
+    throw Error(file.string() + ": too many levels of symbolic links");
+}
+
+}  // namespace detail
+
+/// Where an output really goes: `file` after following symbolic links, and whether it is a
+/// special file (FIFO or device) that is written into rather than replaced.
+struct OutputTarget {
+    std::filesystem::path file;
+    bool special = false;
+};
+
+/// Resolves an output path; throws Error naming `file` when it is a folder or a socket.
+inline OutputTarget resolve_output(const std::filesystem::path& file) {
+    if (file.empty()) {
+        throw Error("output file name is empty");
+    }
+    OutputTarget t;
+    t.file = detail::follow_links(file);
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(t.file, ec);
+    switch (st.type()) {
+    case std::filesystem::file_type::not_found:
+    case std::filesystem::file_type::regular:
+        break;
+    case std::filesystem::file_type::directory:
+        throw Error(file.string() + ": is a folder, not an output file");
+    case std::filesystem::file_type::fifo:
+    case std::filesystem::file_type::character:
+    case std::filesystem::file_type::block:
+        t.special = true;
+        break;
+    default:
+        throw Error(file.string() + ": cannot write to this kind of file" +
+                    (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+    return t;
+}
+
+/// SIGINT and SIGTERM remove every temporary file being written, print "<program>: interrupted
+/// by SIGINT; unfinished output removed" and exit 130 (SIGINT) or 143 (SIGTERM); SIGPIPE is
+/// ignored so that writing into a FIFO whose reader went away is an error, not a silent death.
+/// Idempotent; write_atomically calls it, a program calls it first to also cover its work phase.
+inline void install_interrupt_cleanup(std::string_view program = "rtlab") {
+    const std::size_t n = std::min(program.size(), detail::interrupt_program.size() - 1);
+    std::memcpy(detail::interrupt_program.data(), program.data(), n);
+    detail::interrupt_program[n] = '\0';
+    if (detail::interrupt_installed.exchange(true)) {
+        return;
+    }
+    struct sigaction sa {};
+    sa.sa_handler = detail::on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaddset(&sa.sa_mask, SIGINT);
+    sigaddset(&sa.sa_mask, SIGTERM);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    std::signal(SIGPIPE, SIG_IGN);
+}
+
+/// A uniquely named, empty temporary file beside `target` (".<stem>.rtlab-tmp-<pid>-<n><ext>",
+/// keeping the extension for writers that choose the format by it), removed on destruction unless
+/// commit() renamed it over the target.
+class TemporaryOutput {
+public:
+    explicit TemporaryOutput(const std::filesystem::path& target, const std::string& what)
+        : target_(target), what_(what) {
+        const std::filesystem::path dir =
+            target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+        std::error_code ec;
+        if (!std::filesystem::is_directory(dir, ec)) {
+            throw Error(what + ": folder " + dir.string() + " does not exist");
+        }
+        static std::atomic<std::uint64_t> counter{0};
+        for (int attempt = 0; attempt < 100; ++attempt) {
+            const std::uint64_t n = counter.fetch_add(1);  // pid + counter: unique on a host
+            std::filesystem::path tmp =
+                dir / ("." + target.stem().string() + ".rtlab-tmp-" + std::to_string(::getpid()) +
+                       "-" + std::to_string(n) + target.extension().string());
+            slot_ = detail::register_temporary(tmp);
+            const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+            if (fd >= 0) {
+                struct stat st {};
+                if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
+                    ::fchmod(fd, st.st_mode & 07777);  // a replaced file keeps its permissions
+                }
+                ::close(fd);
+                path_ = std::move(tmp);
+                return;
+            }
+            const int err = errno;
+            detail::unregister_temporary(slot_);
+            slot_ = detail::max_temporaries;
+            if (err != EEXIST) {
+                throw Error(what + ": cannot create a file in " + dir.string() + " (" +
+                            std::strerror(err) + ")");
+            }
+        }
+        throw Error(what + ": cannot find a free temporary name in " + dir.string());
+    }
+    TemporaryOutput(const TemporaryOutput&) = delete;
+    TemporaryOutput& operator=(const TemporaryOutput&) = delete;
+    ~TemporaryOutput() {
+        if (!committed_) {
+            ::unlink(path_.c_str());
+        }
+        detail::unregister_temporary(slot_);
+    }
+    const std::filesystem::path& path() const { return path_; }
+    /// Renames the temporary over the target; throws Error naming the output on failure.
+    void commit() {
+        std::error_code ec;
+        std::filesystem::rename(path_, target_, ec);
+        if (ec) {
+            throw Error(what_ + ": cannot write (" + ec.message() + ")");
+        }
+        committed_ = true;
+    }
+
+private:
+    std::filesystem::path target_;
+    std::string what_;
+    std::filesystem::path path_;
+    std::size_t slot_ = detail::max_temporaries;
+    bool committed_ = false;
+};
+
+/// Checks, before any work, that `file` can be written: not a folder, its folder exists and
+/// accepts a new file (probed by creating and removing a temporary), or it is a writable FIFO or
+/// device. Throws Error naming `file`.
+inline void check_output_path(const std::filesystem::path& file) {
+    const OutputTarget t = resolve_output(file);
+    if (t.special) {
+        if (::access(t.file.c_str(), W_OK) != 0) {
+            throw Error(file.string() + ": cannot write (" + std::strerror(errno) + ")");
+        }
+        return;
+    }
+    const TemporaryOutput probe(t.file, file.string());
+}
+
+/// Calls write(path) with the path to write to and makes the result appear at `file` completely
+/// or not at all (see the top of this header): for a regular or new file, path is a temporary
+/// renamed over the target when write returns; for a FIFO or device, path is the target itself.
+/// On an exception the temporary is removed, the target is left untouched, and the exception
+/// passes on.
 inline void write_atomically(const std::filesystem::path& file,
                              const std::function<void(const std::filesystem::path&)>& write) {
-    std::filesystem::path tmp = file;
-    tmp += ".tmp-rtlab";
-    try {
-        write(tmp);
-        std::error_code ec;
-        std::filesystem::rename(tmp, file, ec);
-        if (ec) {
-            throw Error(file.string() + ": cannot write (" + ec.message() + ")");
-        }
-    } catch (...) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw;
+    install_interrupt_cleanup();
+    const OutputTarget t = resolve_output(file);
+    if (t.special) {
+        write(t.file);
+        return;
     }
+    TemporaryOutput tmp(t.file, file.string());
+    write(tmp.path());
+    tmp.commit();
 }
 
 /// Writes `bytes` to `file` completely or not at all; throws rtlab::Error naming the file.
 inline void write_file_atomically(const std::filesystem::path& file, std::string_view bytes) {
-    write_atomically(file, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    write_atomically(file, [&](const std::filesystem::path& path) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
         if (!out) {
             throw Error(file.string() + ": cannot open for writing");
         }
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        constexpr std::size_t chunk = std::size_t{1} << 20;
+        for (std::size_t at = 0; at < bytes.size() && out; at += chunk) {
+            const std::size_t n = std::min(chunk, bytes.size() - at);
+            out.write(bytes.data() + at, static_cast<std::streamsize>(n));
+        }
         out.close();
         if (!out) {
             throw Error(file.string() + ": write failed (disk full?)");

@@ -73,7 +73,12 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
     }
-    benchmark::RunSpecifiedBenchmarks();
+    const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
+    if (ran == 0) {  // a filter that matches nothing is a mistake, not a successful run
+        std::cerr << "rtlab_bench: no benchmark matches the filter (list them with "
+                     "--benchmark_list_tests)\n";
+        return 1;
+    }
     return 0;
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -99,7 +100,11 @@ double finite_number(std::string_view t, const std::string& what, const std::str
         fail(what, where + ": '" + std::string(t) + "' is not a number");
     }
     if (!std::isfinite(*v)) {
-        fail(what, where + ": non-finite coordinate '" + std::string(t) + "'");
+        fail(what, where + ": non-finite coordinate '" + std::string(t.substr(0, 32)) + "'");
+    }
+    if (std::abs(*v) > double(std::numeric_limits<float>::max())) {
+        fail(what, where + ": coordinate '" + std::string(t.substr(0, 32)) +
+                       "' is outside the float range (|v| > 3.4e38)");
     }
     return *v;
 }
@@ -145,6 +150,9 @@ DeclaredCounts check_obj(std::string_view bytes, const std::string& what) {
         if (!known_obj_statement(tok[0])) {
             fail(what,
                  where + ": unknown OBJ statement '" + std::string(tok[0].substr(0, 32)) + "'");
+        }
+        if (tok[0] == "mtllib" || tok[0] == "usemtl") {
+            c.ignored_materials = true;
         }
         if (tok[0] == "v") {
             if (tok.size() < 4) {
@@ -379,7 +387,13 @@ DeclaredCounts check_ply(std::string_view bytes, const std::string& what) {
             } else if (tok[1] == "binary_big_endian") {
                 format = PlyFormat::binary_be;
             } else {
-                fail(what, where + ": unknown format '" + std::string(tok[1]) + "'");
+                fail(what, where + ": unknown format '" + std::string(tok[1].substr(0, 32)) + "'");
+            }
+            // OpenMesh's reader logs other versions, and its log stream can deadlock on that
+            // (found by fuzzing: tests/fuzz_regressions/ply-version.ply).
+            if (tok[2] != "1.0") {
+                fail(what, where + ": unsupported PLY version '" +
+                               std::string(tok[2].substr(0, 32)) + "' (expected 1.0)");
             }
         } else if (tok[0] == "element") {
             const std::optional<std::int64_t> n = parse_int(tok[2]);
@@ -492,6 +506,10 @@ DeclaredCounts check_ply(std::string_view bytes, const std::string& what) {
                     if (is_vertex && !std::isfinite(v)) {
                         fail(what, "vertex " + std::to_string(item) + ": non-finite " + p.name);
                     }
+                    if (is_vertex && std::abs(v) > double(std::numeric_limits<float>::max())) {
+                        fail(what, "vertex " + std::to_string(item) + ": " + p.name +
+                                       " is outside the float range (|v| > 3.4e38)");
+                    }
                     continue;
                 }
                 PlyProperty count_type;
@@ -519,6 +537,19 @@ DeclaredCounts check_ply(std::string_view bytes, const std::string& what) {
                 }
             }
         }
+    }
+    // Data after the declared elements means the header's counts are wrong (or two files were
+    // concatenated): rejected, except trailing whitespace (a final newline after binary data).
+    if (binary) {
+        const std::size_t extra = body.find_first_not_of(" \t\r\n", pos);
+        if (extra != std::string_view::npos) {
+            fail(what, std::to_string(body.size() - pos) +
+                           " bytes of trailing data after the declared elements (byte " +
+                           std::to_string(lines.offset() + pos) + ")");
+        }
+    } else if (pending_at < pending.size() || !next_token().empty()) {
+        fail(what, "trailing data after the declared elements (line " +
+                       std::to_string(lines.number() + body_lines.number()) + ")");
     }
     return c;
 }

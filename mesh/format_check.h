@@ -16,7 +16,8 @@ namespace rtlab::detail {
 struct DeclaredCounts {
     std::size_t vertices = 0;
     std::size_t faces = 0;
-    bool vertices_known = true;  ///< false for STL, whose reader welds equal corners
+    bool vertices_known = true;      ///< false for STL, whose reader welds equal corners
+    bool ignored_materials = false;  ///< OBJ: has mtllib/usemtl statements (not used by rtlab)
 };
 
 /// Throws Error("<what>: <problem>") when `bytes` is not a well-formed file of format `f` with

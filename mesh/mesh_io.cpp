@@ -2,6 +2,7 @@
 // (openmesh_bridge), then validation and our own fan triangulation, so triangle order is ours.
 #include "mesh/mesh_io.h"
 
+#include "base/atomic_file.h"
 #include "mesh/format_check.h"
 #include "mesh/openmesh_bridge.h"
 
@@ -9,8 +10,11 @@
 #include <cctype>
 #include <charconv>
 #include <fstream>
+#include <iostream>
 #include <iterator>
+#include <mutex>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -142,6 +146,17 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
         throw Error(what + ": empty file");
     }
     const detail::DeclaredCounts declared = detail::check_mesh_bytes(bytes, format, what);
+    if (declared.ignored_materials) {
+        // Once per file and process: the scene's materials apply, not the OBJ's.
+        static std::mutex mutex;
+        static std::set<std::string> warned;
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (warned.insert(what).second) {
+            std::cerr << "rtlab: warning: " << what
+                      << ": OBJ materials (mtllib/usemtl) are ignored; the scene's material "
+                         "applies\n";
+        }
+    }
 
     detail::RawMesh raw;
     if (!detail::openmesh_read(path, raw)) {
@@ -205,29 +220,16 @@ void save_mesh(const TriangleMesh& mesh,
             }
         }
     }
-    const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec)) {
-        throw Error(what + ": folder " + dir.string() + " does not exist");
-    }
-    // Same folder (so rename is atomic) and same extension (OpenMesh picks the writer by it).
-    std::ostringstream tmp_name;
-    tmp_name << "." << path.stem().string() << ".tmp" << std::hex << std::random_device{}()
-             << path.extension().string();
-    const std::filesystem::path tmp = dir / tmp_name.str();
+    // base/atomic_file.h: a temporary in the same folder (so rename is atomic) keeping the
+    // extension (OpenMesh picks the writer by it); FIFOs and devices are written into.
     const bool binary = options.binary && (format == MeshFormat::ply || format == MeshFormat::stl);
-    const bool ok = format == MeshFormat::obj ? write_obj(mesh, tmp)
-                                              : detail::openmesh_write(mesh, tmp, binary);
-    if (!ok) {
-        std::filesystem::remove(tmp, ec);
-        throw Error(what + ": OpenMesh could not write the " + format_name(format) + " file");
-    }
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        const std::string reason = ec.message();
-        std::filesystem::remove(tmp, ec);
-        throw Error(what + ": cannot replace the file: " + reason);
-    }
+    write_atomically(path, [&](const std::filesystem::path& tmp) {
+        const bool ok = format == MeshFormat::obj ? write_obj(mesh, tmp)
+                                                  : detail::openmesh_write(mesh, tmp, binary);
+        if (!ok) {
+            throw Error(what + ": OpenMesh could not write the " + format_name(format) + " file");
+        }
+    });
 }
 
 }  // namespace rtlab

@@ -5,7 +5,9 @@
 #include "intersect/bounds.h"
 #include "intersect/polygon/polygon.h"
 
+#include <cmath>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -74,7 +76,36 @@ struct PolygonPrim {
                 (at / "vertices")[i].fail("non-finite vector");
             }
         }
+        // Planarity, in double, relative to the polygon's size L (its box diagonal): the Newell
+        // normal n must not vanish (|n| > 1e-12 L^2: not all vertices collinear or repeated), and
+        // every vertex must lie within planarity_tolerance * L of the plane through vertex 0.
+        std::vector<Vec3<double>> v;
+        for (const Vec3f& p : o.vertices) {
+            v.push_back({double(p.x), double(p.y), double(p.z)});
+        }
+        const Bounds3f b = bounds(o);
+        const Vec3f d = b.diagonal();
+        const double size = length(Vec3<double>{double(d.x), double(d.y), double(d.z)});
+        const Vec3<double> n = detail::newell_normal(v);
+        const double n_len = length(n);
+        if (!(n_len > 1e-12 * size * size)) {
+            (at / "vertices")
+                .fail(
+                    "degenerate polygon: the vertices are collinear or repeated "
+                    "(zero area)");
+        }
+        for (std::size_t i = 1; i < v.size(); ++i) {
+            const double off = std::abs(dot(n, v[i] - v[0])) / n_len;
+            if (off > planarity_tolerance * size) {
+                (at / "vertices")[i].fail(
+                    "not in the polygon's plane: " + std::to_string(off) +
+                    " away, over the tolerance of 1e-4 x the polygon's size " +
+                    std::to_string(size));
+            }
+        }
     }
+    /// Largest distance of a vertex from the polygon's plane, relative to its box diagonal.
+    static constexpr double planarity_tolerance = 1e-4;
 };
 
 }  // namespace rtlab

@@ -2,13 +2,16 @@
 // JSON path of the offending field; every write goes through a temporary file and a rename.
 #include "scene/scene_io.h"
 
+#include "base/atomic_file.h"
 #include "mesh/mesh_io.h"
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -17,6 +20,7 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace rtlab {
 
@@ -166,12 +170,47 @@ void check_camera(const Camera& c, const JsonPath& at) {
         (at / "height").fail("must be in 1.." + std::to_string(max_image_side));
     }
     const Vec3f dir = c.at - c.from;
+    if (!is_finite(dir)) {
+        (at / "at").fail("too far from 'from' for float precision ('at' - 'from' overflows)");
+    }
     if (length_squared(dir) == 0) {
         (at / "at").fail("must differ from 'from'");
     }
     if (length_squared(cross(dir, c.up)) == 0) {
         (at / "up").fail("must not be zero or parallel to the view direction");
     }
+    // The frame the renderer and ray generator build (trace/camera.h), in float: it must be
+    // orthonormal, or every eye ray is NaN.
+    const auto unit = [](const Vec3f& v) {
+        return is_finite(v) && std::abs(length(v) - 1.0f) < 1e-3f;
+    };
+    const Vec3f forward = normalize(dir);
+    if (!unit(forward)) {
+        (at / "at").fail(
+            "the view direction 'at' - 'from' cannot be normalised in float precision "
+            "(too long or too short)");
+    }
+    if (!unit(normalize(cross(forward, c.up)))) {
+        (at / "up").fail(
+            "cannot be used in float precision (too long, too short or nearly parallel "
+            "to the view direction)");
+    }
+}
+
+/// The camera framing the scene's bounds when the file gives none; fails naming the reason when
+/// the bounds are too large (or empty) to frame in float precision.
+Camera framing_camera(const Scene& s, const JsonPath& at) {
+    const Bounds3f b = scene_bounds(s);
+    const Camera c = camera_framing(b);
+    const Vec3f dir = c.at - c.from;
+    const Vec3f forward = normalize(dir);
+    if (!is_finite(c.from) || !is_finite(c.at) || !is_finite(forward) ||
+        std::abs(length(forward) - 1.0f) >= 1e-3f) {
+        at.fail(
+            "no camera given, and none can be framed automatically: the scene's extent "
+            "overflows float precision (add a \"camera\")");
+    }
+    return c;
 }
 
 void check_material(const Material& m, const JsonPath& at) {
@@ -410,34 +449,6 @@ Json vec_json(const Vec3f& v) {
     return Json::array({tidy(v.x), tidy(v.y), tidy(v.z)});
 }
 
-/// Writes `text` to `path` through a temporary file in the same folder and a rename.
-void write_atomically(const std::filesystem::path& path, const std::string& text) {
-    const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
-    std::ostringstream name;
-    name << "." << path.filename().string() << ".tmp" << std::hex << std::random_device{}();
-    const std::filesystem::path tmp = dir / name.str();
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) {
-            throw Error(path.string() + ": cannot write (folder missing or not writable)");
-        }
-        out << text;
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw Error(path.string() + ": write failed");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        const std::string reason = ec.message();
-        std::filesystem::remove(tmp, ec);
-        throw Error(path.string() + ": cannot replace the file: " + reason);
-    }
-}
-
 /// What a table entry's `write` sees of one object being written: JSON fields in call order,
 /// and the mesh files beside the scene file.
 class ObjectWriter {
@@ -553,13 +564,81 @@ void validate_scene(const Scene& s, std::string_view what) {
     }
 }
 
+namespace {
+
+/// Largest accepted JSON nesting depth (a scene needs 5; this bounds the parser's work).
+constexpr int max_json_depth = 64;
+
+/// nlohmann's parser callback: rejects duplicate keys (nlohmann would keep one silently) and
+/// nesting deeper than max_json_depth, naming the JSON path.
+class KeyChecker {
+public:
+    explicit KeyChecker(JsonPath root) : root_(std::move(root)) {}
+    bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+        using E = Json::parse_event_t;
+        switch (event) {
+        case E::object_start:
+        case E::array_start:
+            if (depth >= max_json_depth) {
+                path(2).fail("JSON nested deeper than " + std::to_string(max_json_depth) +
+                             " levels");
+            }
+            frames_.push_back({event == E::object_start, {}, {}, 0});
+            break;
+        case E::key: {
+            Frame& f = frames_.back();
+            f.key = parsed.get<std::string>();
+            if (!f.keys.insert(f.key).second) {
+                path().fail("duplicate key");
+            }
+            break;
+        }
+        case E::object_end:
+        case E::array_end:
+            frames_.pop_back();
+            [[fallthrough]];
+        case E::value:
+            if (!frames_.empty() && !frames_.back().is_object) {
+                ++frames_.back().index;
+            }
+            break;
+        }
+        return true;
+    }
+
+private:
+    struct Frame {
+        bool is_object;
+        std::set<std::string> keys;
+        std::string key;
+        std::size_t index;
+    };
+    /// The current path, or its first `frames` steps followed by "..." when it is longer.
+    JsonPath path(std::size_t frames = std::numeric_limits<std::size_t>::max()) const {
+        JsonPath p = root_;
+        for (std::size_t i = 0; i < frames_.size(); ++i) {
+            const Frame& f = frames_[i];
+            if (i == frames) {
+                return p / "..";
+            }
+            p = f.is_object ? p / f.key : p[f.index];
+        }
+        return p;
+    }
+    JsonPath root_;
+    std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 Scene parse_scene(std::string_view json_text,
                   const std::filesystem::path& base_dir,
                   std::string_view what) {
     const JsonPath root(std::string(what), "");
     Json doc;
     try {
-        doc = Json::parse(json_text);
+        KeyChecker keys(root);
+        doc = Json::parse(json_text, std::ref(keys));
     } catch (const Json::exception& e) {
         // nlohmann's message is one line: "[json.exception.parse_error.101] parse error at line 3,
         // column 5: ...".
@@ -602,7 +681,7 @@ Scene parse_scene(std::string_view json_text,
     if (const Json* c = find(doc, "camera")) {
         s.camera = parse_camera(*c, root / "camera");
     } else {
-        s.camera = camera_framing(scene_bounds(s));
+        s.camera = framing_camera(s, root / "camera");
     }
     validate_scene(s, what);
     return s;
@@ -616,7 +695,7 @@ Scene load_scene(const std::filesystem::path& path) {
         o.file = path.filename().string();
         s.materials.push_back(Material{});
         s.add(std::move(o));
-        s.camera = camera_framing(scene_bounds(s));
+        s.camera = framing_camera(s, JsonPath(path.string(), "camera"));
         s.lights.push_back(Light{LightKind::point, s.camera.from, {1, 1, 1}});
         return s;
     }
@@ -676,7 +755,7 @@ void save_scene(const Scene& s, const std::filesystem::path& path, bool write_me
         });
         doc["objects"].push_back(out.json());
     }
-    write_atomically(path, doc.dump(2) + "\n");
+    write_file_atomically(path, doc.dump(2) + "\n");  // base/atomic_file.h
 }
 
 }  // namespace rtlab

@@ -4,6 +4,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -25,8 +26,15 @@ constexpr std::size_t hit_record = 4 * sizeof(float);
 
 std::string read_all(const std::filesystem::path& file, std::size_t record, const char* what) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) {
+    const std::filesystem::file_status st = std::filesystem::status(file, ec);
+    if (st.type() == std::filesystem::file_type::not_found) {
         throw Error(file.string() + ": no such " + what + " file");
+    }
+    if (st.type() == std::filesystem::file_type::directory) {
+        throw Error(file.string() + ": is a folder, not a " + what + " file");
+    }
+    if (st.type() != std::filesystem::file_type::regular) {
+        throw Error(file.string() + ": not a regular file (a " + what + " file is read whole)");
     }
     std::ifstream in(file, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -73,27 +81,55 @@ std::vector<Rayf> load_rays(const std::filesystem::path& file) {
     return rays;
 }
 
+namespace {
+
+/// Writes n records of `record` bytes, produced by fill(i, bytes) for record i, in chunks of
+/// 64 Ki records, through write_atomically (the temporary grows as records are converted).
+template <class Fill>
+void save_records(const std::filesystem::path& file,
+                  std::size_t n,
+                  std::size_t record,
+                  Fill&& fill) {
+    write_atomically(file, [&](const std::filesystem::path& path) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        if (!out) {
+            throw Error(file.string() + ": cannot open for writing");
+        }
+        constexpr std::size_t chunk = std::size_t{1} << 16;
+        std::string bytes;
+        for (std::size_t start = 0; start < n && out; start += chunk) {
+            const std::size_t end = std::min(n, start + chunk);
+            bytes.assign((end - start) * record, '\0');
+            for (std::size_t i = start; i < end; ++i) {
+                fill(i, bytes.data() + (i - start) * record);
+            }
+            out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        }
+        out.close();
+        if (!out) {
+            throw Error(file.string() + ": write failed (disk full?)");
+        }
+    });
+}
+
+}  // namespace
+
 void save_rays(const std::filesystem::path& file, std::span<const Rayf> rays) {
-    std::string bytes(rays.size() * ray_record, '\0');
-    for (std::size_t i = 0; i < rays.size(); ++i) {
+    save_records(file, rays.size(), ray_record, [&](std::size_t i, char* p) {
         const Rayf& r = rays[i];
         const float v[8] = {r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax};
-        std::memcpy(bytes.data() + i * ray_record, v, ray_record);
-    }
-    write_file_atomically(file, bytes);
+        std::memcpy(p, v, ray_record);
+    });
 }
 
 void save_hits(const std::filesystem::path& file, std::span<const Hit> hits) {
-    std::string bytes(hits.size() * hit_record, '\0');
-    for (std::size_t i = 0; i < hits.size(); ++i) {
+    save_records(file, hits.size(), hit_record, [&](std::size_t i, char* p) {
         const Hit& h = hits[i];
-        char* p = bytes.data() + i * hit_record;
         std::memcpy(p, &h.t, 4);
         std::memcpy(p + 4, &h.prim, 4);
         std::memcpy(p + 8, &h.u, 4);
         std::memcpy(p + 12, &h.v, 4);
-    }
-    write_file_atomically(file, bytes);
+    });
 }
 
 std::vector<Hit> load_hits(const std::filesystem::path& file) {
