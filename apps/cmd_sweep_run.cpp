@@ -137,25 +137,38 @@ int run_one_shard(const RunArgs& a) {
     return 0;
 }
 
+// Shards with a case that is not done, and how many such cases there are (`todo`).
+std::vector<std::size_t> pending_shards(const sweep::Planned& p, std::size_t& todo) {
+    const auto results = sweep::read_results(p.dir);
+    std::vector<std::size_t> pending;
+    todo = 0;
+    for (std::size_t k = 0; k < p.shards.size(); ++k) {
+        std::size_t n = 0;
+        for (const std::size_t i : p.shards[k]) {
+            const auto it = results.find(p.cases[i].id);
+            n += it == results.end() || it->second.value("status", "") != "done" ? 1 : 0;
+        }
+        if (n > 0) {
+            pending.push_back(k);
+            todo += n;
+        }
+    }
+    return pending;
+}
+
+// A line for a shard child that did not end with exit code 0.
+std::string crash_line(const sweep::Planned& p, std::size_t k, int wstatus) {
+    return fmt::format("shard {} ended with {} {} (see {}/logs/shard-{:04}.log)", k,
+                       WIFSIGNALED(wstatus) ? "signal" : "exit code",
+                       WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
+                       p.dir.string(), k);
+}
+
 int run_local(const RunArgs& a) {
     const sweep::Planned p = sweep::plan_into(a.file, a.out, a.shards);
     const auto before = sweep::status_of(p, sweep::read_results(p.dir));
-    std::vector<std::size_t> pending;
     std::size_t todo = 0;
-    {
-        const auto results = sweep::read_results(p.dir);
-        for (std::size_t k = 0; k < p.shards.size(); ++k) {
-            std::size_t n = 0;
-            for (const std::size_t i : p.shards[k]) {
-                const auto it = results.find(p.cases[i].id);
-                n += it == results.end() || it->second.value("status", "") != "done" ? 1 : 0;
-            }
-            if (n > 0) {
-                pending.push_back(k);
-                todo += n;
-            }
-        }
-    }
+    const std::vector<std::size_t> pending = pending_shards(p, todo);
     std::cerr << fmt::format(
         "sweep '{}' -> {}: {} cases in {} shards; {} already done, {} to run in {} shards, {} at "
         "a time\n",
@@ -188,11 +201,7 @@ int run_local(const RunArgs& a) {
             const auto it = running.find(done);
             if (it != running.end() && !(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) &&
                 interrupted == 0) {
-                crashed.push_back(
-                    fmt::format("shard {} ended with {} {} (see {}/logs/shard-{:04}.log)",
-                                it->second, WIFSIGNALED(wstatus) ? "signal" : "exit code",
-                                WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : WEXITSTATUS(wstatus),
-                                p.dir.string(), it->second));
+                crashed.push_back(crash_line(p, it->second, wstatus));
             }
             running.erase(done);
             continue;

@@ -157,6 +157,36 @@ std::string check_method_list(const ojson& m, const std::string& where) {
     return text;
 }
 
+// The "rays" object: kinds (checked) and count.
+void parse_rays(const ojson& rays, const std::string& where, SweepFile& s) {
+    if (!rays.is_object()) {
+        fail(where + ": rays", "expected {\"kinds\": [...], \"count\": N}");
+    }
+    for (const auto& [k, v] : rays.items()) {
+        if (k == "kinds") {
+            for (const ojson& kind : as_list(v)) {
+                const std::string name = get_string(kind, where + ": rays.kinds");
+                try {
+                    (void)parse_ray_kind(name);
+                } catch (const std::exception&) {
+                    fail(
+                        where + ": rays.kinds",
+                        fmt::format("unknown ray kind '{}' (primary shadow diffuse random)", name));
+                }
+                s.kinds.push_back(name);
+            }
+        } else if (k == "count") {
+            s.ray_count =
+                static_cast<std::size_t>(get_int(v, where + ": rays.count", 1, 100000000));
+        } else {
+            fail(where + ": rays." + k, "unknown key (rays keys: kinds count)");
+        }
+    }
+    if (s.kinds.empty()) {
+        s.kinds = {"primary"};
+    }
+}
+
 }  // namespace
 
 std::vector<std::string> expand_structure(const ojson& entry, const std::string& where) {
@@ -263,32 +293,7 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
     if (s.methods.empty()) {
         fail(at("methods"), "an empty list");
     }
-    const ojson rays = j.value("rays", ojson::object());
-    if (!rays.is_object()) {
-        fail(at("rays"), "expected {\"kinds\": [...], \"count\": N}");
-    }
-    for (const auto& [k, v] : rays.items()) {
-        if (k == "kinds") {
-            for (const ojson& kind : as_list(v)) {
-                const std::string name = get_string(kind, at("rays.kinds"));
-                try {
-                    (void)parse_ray_kind(name);
-                } catch (const std::exception&) {
-                    fail(
-                        at("rays.kinds"),
-                        fmt::format("unknown ray kind '{}' (primary shadow diffuse random)", name));
-                }
-                s.kinds.push_back(name);
-            }
-        } else if (k == "count") {
-            s.ray_count = static_cast<std::size_t>(get_int(v, at("rays.count"), 1, 100000000));
-        } else {
-            fail(at("rays." + k), "unknown key (rays keys: kinds count)");
-        }
-    }
-    if (s.kinds.empty()) {
-        s.kinds = {"primary"};
-    }
+    parse_rays(j.value("rays", ojson::object()), where, s);
     if (j.contains("threads")) {
         s.threads.clear();
         for (const ojson& t : as_list(j["threads"])) {

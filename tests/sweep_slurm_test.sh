@@ -57,10 +57,13 @@ wait_jobs "$(jobs_of "$tmp/slurm")"
 python3 "$here/sweep_compare.py" "$tmp/local/merged.json" "$tmp/slurm/merged.json" --failed 3 \
     --total 24 || fail "local and Slurm tables disagree"
 grep -q '"slurm_job":"[0-9]' "$tmp"/slurm/results/shard-0000.jsonl || fail "no Slurm job in provenance"
+if python3 -c "import matplotlib" 2>/dev/null; then
+    [[ -s $tmp/slurm/report.md ]] || { cat "$tmp/slurm/slurm/merge.out"; fail "the merge job built no report"; }
+fi
 
 # scancel of one running array task: the merge job reports the missing cases; re-submitting
 # finishes the sweep and keeps the cases done before.
-sed 's/"count": 400/"count": 40000/; s/"repeat": 1/"repeat": 3/' "$small" >"$tmp/big.json"
+sed 's/"count": 400/"count": 20000/; s/"repeat": 1/"repeat": 2/' "$small" >"$tmp/big.json"
 "$RTLAB" sweep submit "$tmp/big.json" --slurm -o "$tmp/s2" --shards 4 --max-parallel 1 \
     --cpus-per-task 1 >/dev/null || fail "submit big"
 array=$(jobs_of "$tmp/s2")

@@ -41,7 +41,7 @@ python3 "$here/sweep_compare.py" "$tmp/a/merged.json" "$tmp/b/merged.json" --fai
     fail "runs a and b disagree"
 
 # Interrupt: more rays so the run is still going when SIGINT arrives.
-sed 's/"count": 400/"count": 20000/; s/"repeat": 1/"repeat": 3/' "$small" >"$tmp/big.json"
+sed 's/"count": 400/"count": 10000/; s/"repeat": 1/"repeat": 2/' "$small" >"$tmp/big.json"
 "$RTLAB" sweep run "$tmp/big.json" -o "$tmp/c" --shards 4 2>"$tmp/c.err" &
 pid=$!
 for _ in $(seq 1 600); do
