@@ -187,9 +187,11 @@ public:
             std::filesystem::path tmp =
                 dir / ("." + target.stem().string() + ".rtlab-tmp-" + std::to_string(::getpid()) +
                        "-" + std::to_string(n) + target.extension().string());
-            slot_ = detail::register_temporary(tmp);
+            // Registered for the signal handler only once created by us (O_EXCL), so a signal
+            // can never remove a file of the same name that is not ours.
             const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
             if (fd >= 0) {
+                slot_ = detail::register_temporary(tmp);
                 struct stat st {};
                 if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
                     ::fchmod(fd, st.st_mode & 07777);  // a replaced file keeps its permissions
@@ -199,8 +201,6 @@ public:
                 return;
             }
             const int err = errno;
-            detail::unregister_temporary(slot_);
-            slot_ = detail::max_temporaries;
             if (err != EEXIST) {
                 throw Error(what + ": cannot create a file in " + dir.string() + " (" +
                             std::strerror(err) + ")");
