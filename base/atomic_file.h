@@ -141,8 +141,9 @@ inline OutputTarget resolve_output(const std::filesystem::path& file) {
         t.special = true;
         break;
     default:
-        throw Error(file.string() + ": cannot write to this kind of file" +
-                    (ec ? " (" + ec.message() + ")" : std::string()));
+        throw Error(file.string() +
+                    ": cannot write to this kind of file (not a regular file, FIFO "
+                    "or device)");
     }
     return t;
 }
@@ -184,12 +185,20 @@ public:
         static std::atomic<std::uint64_t> counter{0};
         for (int attempt = 0; attempt < 100; ++attempt) {
             const std::uint64_t n = counter.fetch_add(1);  // pid + counter: unique on a host
-            std::filesystem::path tmp =
-                dir / ("." + target.stem().string() + ".rtlab-tmp-" + std::to_string(::getpid()) +
-                       "-" + std::to_string(n) + target.extension().string());
-            slot_ = detail::register_temporary(tmp);
+            // Appended piecewise: GCC 12 at -O3 trips -Wrestrict on "literal" + std::string.
+            std::string name(".");
+            name += target.stem().string();
+            name += ".rtlab-tmp-";
+            name += std::to_string(::getpid());
+            name += '-';
+            name += std::to_string(n);
+            name += target.extension().string();
+            std::filesystem::path tmp = dir / name;
+            // Registered for the signal handler only once created by us (O_EXCL), so a signal
+            // can never remove a file of the same name that is not ours.
             const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
             if (fd >= 0) {
+                slot_ = detail::register_temporary(tmp);
                 struct stat st {};
                 if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
                     ::fchmod(fd, st.st_mode & 07777);  // a replaced file keeps its permissions
@@ -199,8 +208,6 @@ public:
                 return;
             }
             const int err = errno;
-            detail::unregister_temporary(slot_);
-            slot_ = detail::max_temporaries;
             if (err != EEXIST) {
                 throw Error(what + ": cannot create a file in " + dir.string() + " (" +
                             std::strerror(err) + ")");

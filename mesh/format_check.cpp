@@ -235,10 +235,14 @@ DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
     if (tok.size() > 1 && tok[1] == "BINARY") {
         fail(what, "binary OFF is not supported");
     }
-    tok.erase(tok.begin());
-    if (tok.empty()) {
-        tok = next_tokens();
+    // OpenMesh reads the counts from the line after "OFF" and ignores the rest of the first line,
+    // so counts there would be read from the wrong place (found by fuzzing:
+    // tests/fuzz_regressions/off-counts-on-header-line.off, an endless read).
+    if (tok.size() > 1) {
+        fail(what, "line " + std::to_string(lines.number()) +
+                       ": text after 'OFF' (the counts must be on their own line)");
     }
+    tok = next_tokens();
     if (tok.size() < 2) {
         fail(what, "header needs vertex and face counts");
     }

@@ -5,6 +5,7 @@
 #include "intersect/bounds.h"
 #include "intersect/polygon/polygon.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -76,12 +77,16 @@ struct PolygonPrim {
                 (at / "vertices")[i].fail("non-finite vector");
             }
         }
-        // Planarity, in double, relative to the polygon's size L (its box diagonal): the Newell
-        // normal n must not vanish (|n| > 1e-12 L^2: not all vertices collinear or repeated), and
-        // every vertex must lie within planarity_tolerance * L of the plane through vertex 0.
+        // Planarity, in double, relative to the polygon's size L (its box diagonal) and to the
+        // float rounding of its coordinates (M = largest |coordinate|): the Newell normal n must
+        // not vanish (|n| > 1e-12 L^2: not all vertices collinear or repeated), and every vertex
+        // must lie within planarity_tolerance * L + 1e-6 * M (about 8 float ulps) of the plane
+        // through vertex 0.
         std::vector<Vec3<double>> v;
+        double magnitude = 0;
         for (const Vec3f& p : o.vertices) {
             v.push_back({double(p.x), double(p.y), double(p.z)});
+            magnitude = std::max(magnitude, max_component(abs(v.back())));
         }
         const Bounds3f b = bounds(o);
         const Vec3f d = b.diagonal();
@@ -90,17 +95,16 @@ struct PolygonPrim {
         const double n_len = length(n);
         if (!(n_len > 1e-12 * size * size)) {
             (at / "vertices")
-                .fail(
-                    "degenerate polygon: the vertices are collinear or repeated "
-                    "(zero area)");
+                .fail("degenerate polygon: the vertices are collinear or repeated (zero area)");
         }
+        const double tolerance = planarity_tolerance * size + 1e-6 * magnitude;
         for (std::size_t i = 1; i < v.size(); ++i) {
             const double off = std::abs(dot(n, v[i] - v[0])) / n_len;
-            if (off > planarity_tolerance * size) {
-                (at / "vertices")[i].fail(
-                    "not in the polygon's plane: " + std::to_string(off) +
-                    " away, over the tolerance of 1e-4 x the polygon's size " +
-                    std::to_string(size));
+            if (off > tolerance) {
+                (at / "vertices")[i].fail("not in the polygon's plane: " + std::to_string(off) +
+                                          " away, tolerance " + std::to_string(tolerance) +
+                                          " (1e-4 x the polygon's size + 1e-6 x its largest "
+                                          "coordinate)");
             }
         }
     }

@@ -66,6 +66,13 @@ interrupt_run() {
     rm -rf "$dir"; mkdir -p "$dir"
     "$RTLAB" "$@" >"$tmp/int.out" 2>"$tmp/int.err" &
     local pid=$! seen=0
+    # Background jobs start with SIGINT ignored; wait until rtlab has installed its handler.
+    for _ in $(seq 1 600); do
+        local caught
+        caught=$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status" 2>/dev/null)
+        [[ -n $caught && $(( 0x$caught & 2 )) -ne 0 ]] && break
+        sleep 0.05
+    done
     for _ in $(seq 1 3000); do
         if [[ $wait_tmp -eq 1 ]]; then
             [[ -n $(ls -A "$dir") ]] && { seen=1; break; }
