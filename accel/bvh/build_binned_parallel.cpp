@@ -76,6 +76,13 @@ struct V4 {
     void store(float* p) const {
         _mm_storeu_ps(p, v);
     }
+    /// x*y + y*z + z*x of lanes 0..2, summed in that order.
+    float cross_sum() const {
+        const __m128 p = _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 0, 2, 1)));
+        alignas(16) float o[4];
+        _mm_store_ps(o, p);
+        return o[0] + o[1] + o[2];
+    }
 #else
     float v[4];
     static V4 load(const float* p) {
@@ -118,6 +125,9 @@ struct V4 {
     void store(float* p) const {
         std::copy(v, v + 4, p);
     }
+    float cross_sum() const {
+        return v[0] * v[1] + v[1] * v[2] + v[2] * v[0];
+    }
 #endif
 };
 
@@ -151,6 +161,8 @@ struct Box {
         lo = vmin(lo, r.vlo());
         hi = vmax(hi, r.vhi());
     }
+    /// Half the surface area of a box known to be non-empty (no stores, no checks).
+    float half_area_filled() const { return (hi - lo).cross_sum(); }
     /// Half the surface area; 0 when empty.
     float half_area() const {
         float a[4], b[4];
@@ -439,23 +451,32 @@ private:
                 continue;
             }
             const std::size_t base = a * nb;
+            // Empty bins leave the sums as they were, so their areas are not recomputed.
             Box acc;
             std::uint32_t cnt = 0;
+            float area = 0.0f;
             for (std::uint32_t k = nb - 1; k > 0; --k) {
-                acc.extend(bins.box[base + k]);
-                cnt += bins.prims[base + k];
-                right_area[k - 1] = acc.half_area();
+                if (bins.prims[base + k] != 0) {
+                    acc.extend(bins.box[base + k]);
+                    cnt += bins.prims[base + k];
+                    area = acc.half_area_filled();
+                }
+                right_area[k - 1] = area;
                 right_count[k - 1] = cnt;
             }
             acc = Box{};
             cnt = 0;
+            area = 0.0f;
             for (std::uint32_t k = 0; k + 1 < nb; ++k) {
-                acc.extend(bins.box[base + k]);
-                cnt += bins.prims[base + k];
+                if (bins.prims[base + k] != 0) {
+                    acc.extend(bins.box[base + k]);
+                    cnt += bins.prims[base + k];
+                    area = acc.half_area_filled();
+                }
                 if (cnt == 0 || right_count[k] == 0) {
                     continue;
                 }
-                const float cost = acc.half_area() * static_cast<float>(cnt) +
+                const float cost = area * static_cast<float>(cnt) +
                                    right_area[k] * static_cast<float>(right_count[k]);
                 if (cost < best) {
                     best = cost;
