@@ -626,6 +626,9 @@ private:
             const std::vector<BvhNode>& src = at.chunk->nodes;
             for (std::size_t i = 0; i < src.size(); ++i) {
                 BvhNode n = src[i];
+                if (!n.is_leaf() && n.first == 0) {
+                    continue;  // a sub-chunk's placeholder: that chunk's place writes its root
+                }
                 if (!n.is_leaf()) {
                     n.first = at.base + n.first - 1;
                 }
