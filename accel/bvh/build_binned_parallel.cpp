@@ -339,7 +339,8 @@ private:
                 Chunk* raw = sub.get();
                 ch.subs.push_back({left + i, std::move(sub)});
                 tasks.run([this, raw, c, depth, &tasks]() {
-                    raw->nodes.reserve(2 * std::size_t{c.size()} / 3);
+                    raw->nodes.reserve(std::min<std::size_t>(
+                        c.size(), 2 * task_min));  // most nodes go to sub-chunks
                     raw->nodes.emplace_back();
                     subtree(*raw, 0, c, depth + 1, tasks);
                 });
