@@ -14,6 +14,7 @@ Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg);
 Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg);
 Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg);
 Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg);
+Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
 KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
 Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg);
@@ -49,6 +50,16 @@ const ParamSpec bvh_ci = real_param("ci",
                                     "SAH cost of one primitive test");
 const ParamSpec morton_bits =
     integer_param("morton_bits", bvh_default.morton_bits, 1, 10, "Morton code bits per axis");
+const ParamSpec threads =
+    integer_param("threads",
+                  0,
+                  0,
+                  256,
+                  "TBB threads of the build (0: all allowed); the tree is the same for any");
+const ParamSpec from = choice_param("from",
+                                    0,
+                                    {"pbinned", "binned", "sweep", "lbvh", "median"},
+                                    "the binary BVH builder whose tree is converted");
 const ParamSpec kd_ct = real_param("ct",
                                    static_cast<double>(kd_default.traversal_cost),
                                    0,
@@ -113,6 +124,35 @@ GridConfig grid_config(const AccelSpec& s) {
     return c;
 }
 
+std::uint32_t threads_of(const AccelSpec& s) {
+    return as_u32(s.value_or("threads", 0));
+}
+
+AnyAccel pbinned_row(const BuildInput& in, const AccelSpec& s) {
+    return build_bvh_binned_parallel(in, bvh_config(s), threads_of(s));
+}
+
+/// The binary tree a layout row converts: built by the builder its `from` parameter names.
+Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
+    const Bvh::Config c = bvh_config(s);
+    switch (static_cast<int>(s.value("from"))) {
+    case 0:
+        return build_bvh_binned_parallel(in, c, threads_of(s));
+    case 1:
+        return build_bvh_binned_sah(in, c);
+    case 2:
+        return build_bvh_sweep_sah(in, c);
+    case 3:
+        return build_bvh_lbvh(in, c);
+    default:
+        return build_bvh_median(in, c);
+    }
+}
+
+AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
+    return PairBvh::convert(source_bvh(in, s));
+}
+
 /// A row's build function: the builder B called with the Config the spec describes.
 template <auto B, auto ToConfig>
 AnyAccel row(const BuildInput& in, const AccelSpec& s) {
@@ -133,6 +173,14 @@ const AccelEntry registry_rows[] = {
      "binary BVH, binned SAH (Wald 2007)",
      {max_leaf, bins, bvh_ct, bvh_ci},
      &row<build_bvh_binned_sah, bvh_config>},
+    {"bvh:pbinned",
+     "binary BVH, binned SAH on all axes in one pass, parallel with TBB, deterministic",
+     {max_leaf, bins, bvh_ct, bvh_ci, threads},
+     &pbinned_row},
+    {"bvh:pair",
+     "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
+     {from, max_leaf, bins, bvh_ct, bvh_ci, threads},
+     &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
      {max_leaf, bvh_ct, bvh_ci},

@@ -30,7 +30,8 @@ struct TraceArgs {
     bool any_hit = false;
     std::string hits;
     int threads = 0;
-    int repeat = 1;
+    int repeat = 5;
+    bool warmup = true;
     bool stats = false;
     bool robust = false;
 };
@@ -58,6 +59,7 @@ int run_trace(const TraceArgs& a) {
     MeasureOptions opt;
     opt.any_hit = a.any_hit;
     opt.repeat = a.repeat;
+    opt.warmup = a.warmup ? 1 : 0;
     opt.stats = a.stats;
     std::vector<Hit> hits;
     const TraceMeasurement m = measure_trace(tracer, rays, opt, &hits);
@@ -79,6 +81,7 @@ int run_trace(const TraceArgs& a) {
     j["build_ms"] = m.build_ms;
     j["trace_ms"] = m.trace_ms;
     j["repeat"] = a.repeat;
+    j["warmup"] = a.warmup;
     j["mrays_per_s"] = m.mrays_per_s;
     j["accel_bytes"] = m.accel_bytes;
     j["bytes_per_prim"] = m.bytes_per_prim;
@@ -123,8 +126,12 @@ Command add_trace(CLI::App& root) {
                     "uint32 prim (0xFFFFFFFF miss), float32 u, v");
     sub->add_option("--threads", a->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
-    sub->add_option("--repeat", a->repeat, "Trace K times and report the median (default 1)")
+    sub->add_option("--repeat", a->repeat,
+                    "Timed runs; trace_ms is their median (default 5, after one untimed warm-up "
+                    "run)")
         ->check(CLI::Range(1, 10000));
+    sub->add_flag("!--no-warmup", a->warmup,
+                  "Time the first run too (no untimed warm-up run before the --repeat runs)");
     sub->add_flag("--stats", a->stats, "Count nodes and primitive tests per ray (separate pass)");
     sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
     return {sub, [a] { return run_trace(*a); }};

@@ -7,12 +7,14 @@
 
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace {
 bool quick = false;
+std::string suite = "all";
 std::vector<std::string> specs;  // canonical specs named by --accel, in order
 
 constexpr std::string_view own_flags =
@@ -20,7 +22,11 @@ constexpr std::string_view own_flags =
     "  --quick        smaller sizes and fewer cases (the whole run in about a minute)\n"
     "  --accel SPEC   trace and build benchmarks for this structure spec only, e.g.\n"
     "                 --accel 'bvh:binned,max_leaf=8' (repeatable; default: every registry row\n"
-    "                 but brute, with default parameters; see rtlab list)\n\n";
+    "                 but brute, with default parameters; see rtlab list)\n"
+    "  --suite NAME   all (default: every suite below but issue12) or issue12 (issue 12's target\n"
+    "                 table: SF 4 tessellated flake with floor, SF 4 and SF 5 analytic, 1 and 2\n"
+    "                 threads, Embree medium and high; bench/report.py --suite issue12 writes\n"
+    "                 it into docs/results.md; with --quick sizes 2 and 3)\n\n";
 }  // namespace
 
 bool rtlab::bench::quick_mode() {
@@ -47,6 +53,12 @@ int main(int argc, char** argv) {
             const std::string_view arg(argv[i]);
             if (arg == "--quick") {
                 quick = true;
+            } else if (arg == "--suite" && i + 1 < argc) {
+                suite = argv[++i];
+                if (suite != "all" && suite != "issue12") {
+                    throw std::invalid_argument("--suite must be all or issue12, not '" + suite +
+                                                "'");
+                }
             } else if (arg == "--accel" && i + 1 < argc) {
                 specs.push_back(rtlab::parse_accel_spec(argv[++i]).canonical());
             } else if (arg.starts_with("--accel=")) {
@@ -63,12 +75,16 @@ int main(int argc, char** argv) {
         return 2;
     }
     argc = kept;
-    rtlab::bench::register_intersect_benchmarks();
-    rtlab::bench::register_roots_benchmarks();
-    rtlab::bench::register_trace_benchmarks();
-    rtlab::bench::register_render_benchmarks();
-    rtlab::bench::register_embree_benchmarks();
-    rtlab::bench::register_build_benchmarks();
+    if (suite == "issue12") {
+        rtlab::bench::register_issue12_benchmarks();
+    } else {
+        rtlab::bench::register_intersect_benchmarks();
+        rtlab::bench::register_roots_benchmarks();
+        rtlab::bench::register_trace_benchmarks();
+        rtlab::bench::register_render_benchmarks();
+        rtlab::bench::register_embree_benchmarks();
+        rtlab::bench::register_build_benchmarks();
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;

@@ -29,6 +29,28 @@ void register_build_benchmarks();
 /// trace/embree:<quality>/... and build/embree:<quality>/...; registers nothing without Embree.
 void register_embree_benchmarks();
 
+/// issue12/trace/... and issue12/build/...: issue 12's target table (issue12_bench.cpp); only
+/// with `--suite issue12`.
+void register_issue12_benchmarks();
+
+/// Embree's rows of the issue-12 suite (embree_issue12.cpp); registers nothing without Embree.
+void register_issue12_embree_benchmarks();
+
+/// The issue-12 suite's scenes: the tessellated flake with its floor, and the analytic flakes.
+std::string issue12_mesh_scene();
+std::vector<std::string> issue12_sphere_scenes();
+
+}  // namespace rtlab::bench
+
+namespace benchmark::internal {
+class Benchmark;
+}
+
+namespace rtlab::bench {
+
+/// The issue-12 suite's timing settings: milliseconds, repetitions reported as aggregates.
+benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b);
+
 /// render/flake_mirror/{auto,all_features}: the mirror-only sphere flake rendered with the
 /// auto-selected integrator instance and with every feature compiled in.
 void register_render_benchmarks();

@@ -1,8 +1,9 @@
 // Build benchmarks build/<structure>/soup/<prims>/threads:<k>: build time of every registered
 // structure and builder over a triangle-soup size sweep, with TBB limited to k threads
-// (tbb::global_control max_allowed_parallelism). Our builders are single-threaded today, so
-// threads:2 equals threads:1 for them up to noise (quick mode registers only threads:1 for them);
-// only Embree's builder (embree_bench.cpp) uses the second thread. Timed: the build call only,
+// (tbb::global_control max_allowed_parallelism). bvh:pbinned (and the layouts converted from
+// it) build in parallel; the other builders are single-threaded, so threads:2 equals threads:1
+// for them up to noise (quick mode registers only threads:1); Embree's builder
+// (embree_bench.cpp) uses the second thread too. Timed: the build call only,
 // from prepared bounds plus SceneTracer's exact triangle clip (kd-tree perfect splits, grid cell
 // overlap). Counters: prims, build_ms, bytes/prim, sah_cost, nodes.
 #include "accel/any_accel.h"

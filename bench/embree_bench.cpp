@@ -29,29 +29,13 @@
 #include <utility>
 #include <vector>
 
+namespace rtlab::bench {
+
 namespace {
-
-using namespace rtlab;
-using namespace rtlab::bench;
-
 constexpr std::size_t check_rays = 1000;
-constexpr std::size_t max_disagreements = 5;
+}  // namespace
 
-struct Quality {
-    const char* name;
-    RTCBuildQuality quality;
-};
-
-constexpr Quality qualities[] = {{"medium", RTC_BUILD_QUALITY_MEDIUM},
-                                 {"high", RTC_BUILD_QUALITY_HIGH}};
-
-/// A committed Embree scene and the time its build took.
-struct BuiltScene {
-    std::unique_ptr<EmbreeScene> scene;
-    double build_ms = 0;
-};
-
-const BuiltScene& embree_scene(const std::string& scene, RTCBuildQuality q) {
+const BuiltScene& cached_embree_scene(const std::string& scene, RTCBuildQuality q) {
     static std::map<std::pair<std::string, int>, BuiltScene> cache;
     BuiltScene& slot = cache[{scene, static_cast<int>(q)}];
     if (!slot.scene) {
@@ -62,14 +46,7 @@ const BuiltScene& embree_scene(const std::string& scene, RTCBuildQuality q) {
     return slot;
 }
 
-/// How Embree and bvh:binned compare on the first check_rays rays of a set.
-struct Agreement {
-    std::size_t checked = 0;  ///< rays compared
-    std::size_t agree = 0;    ///< rays on which both agree
-    std::size_t hits = 0;     ///< agreeing rays that hit (shadow: are blocked)
-};
-
-Agreement agreement(const EmbreeScene& e, const std::string& scene, RayKind kind) {
+Agreement embree_agreement(const EmbreeScene& e, const std::string& scene, RayKind kind) {
     const std::vector<Rayf>& all = bench_scene(scene).rays.at(kind);
     const std::span<const Rayf> rays(all.data(), std::min(check_rays, all.size()));
     const SceneTracer& ours = bench_tracer(scene, "bvh:binned");
@@ -104,12 +81,29 @@ Agreement agreement(const EmbreeScene& e, const std::string& scene, RayKind kind
     return a;
 }
 
+}  // namespace rtlab::bench
+
+namespace {
+
+using namespace rtlab;
+using namespace rtlab::bench;
+
+constexpr std::size_t max_disagreements = 5;
+
+struct Quality {
+    const char* name;
+    RTCBuildQuality quality;
+};
+
+constexpr Quality qualities[] = {{"medium", RTC_BUILD_QUALITY_MEDIUM},
+                                 {"high", RTC_BUILD_QUALITY_HIGH}};
+
 void bm_embree_trace(benchmark::State& state, Quality q, std::string scene, RayKind kind) {
     const BuiltScene* built = nullptr;
     Agreement a;
     try {
-        built = &embree_scene(scene, q.quality);
-        a = agreement(*built->scene, scene, kind);
+        built = &cached_embree_scene(scene, q.quality);
+        a = embree_agreement(*built->scene, scene, kind);
     } catch (const std::exception& ex) {
         state.SkipWithError(ex.what());
         return;

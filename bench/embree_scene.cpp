@@ -2,6 +2,7 @@
 #include "bench/embree_scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <limits>
 #include <stdexcept>
@@ -23,6 +24,14 @@ void check_device(const char* what) {
         throw std::runtime_error(std::string("embree: ") + what + " failed with error " +
                                  std::to_string(static_cast<int>(e)));
     }
+}
+
+// Bytes Embree holds, from its memory monitor: allocations add, frees subtract.
+std::atomic<std::int64_t> embree_allocated{0};
+
+bool monitor(void*, ssize_t bytes, bool) {
+    embree_allocated += bytes;
+    return true;
 }
 
 RTCRay to_embree(const Rayf& r) {
@@ -47,6 +56,7 @@ RTCRay to_embree(const Rayf& r) {
 RTCDevice embree_device() {
     static const RTCDevice device = [] {
         RTCDevice d = rtcNewDevice(nullptr);
+        rtcSetDeviceMemoryMonitorFunction(d, monitor, nullptr);
         // Warm-up: the first builds in a process start Embree's TBB workers and allocators; one
         // tiny build (a triangle and a sphere) here keeps that cost out of every measured build.
         RTCScene s = rtcNewScene(d);
@@ -83,6 +93,7 @@ EmbreeScene::EmbreeScene(const Scene& s, RTCBuildQuality q) {
             "EmbreeScene: only triangle meshes and spheres have an Embree counterpart");
     }
     RTCDevice device = embree_device();
+    bytes_ = -embree_allocated.load();
     scene_ = rtcNewScene(device);
     rtcSetSceneBuildQuality(scene_, q);
     for (const MeshObject& m : s.meshes) {
@@ -140,6 +151,7 @@ double EmbreeScene::commit() {
     rtcCommitScene(scene_);
     const auto t1 = std::chrono::steady_clock::now();
     check_device("rtcCommitScene");
+    bytes_ += embree_allocated.load();
     return std::chrono::duration<double, std::milli>(t1 - t0).count();
 }
 

@@ -7,10 +7,13 @@
 
 #include "intersect/ray.h"
 #include "scene/scene.h"
+#include "trace/ray_gen.h"
 
 #include <cstdint>
 #include <embree3/rtcore.h>
+#include <memory>
 #include <span>
+#include <string>
 
 namespace rtlab::bench {
 
@@ -31,6 +34,11 @@ public:
     /// std::runtime_error when Embree reports an error.
     double commit();
 
+    /// Bytes Embree allocated for this scene (geometry buffers and BVH, counted through
+    /// rtcSetDeviceMemoryMonitorFunction from construction to the end of commit(); Embree's own
+    /// figure, so it includes its vertex and index copies).
+    std::int64_t bytes() const { return bytes_; }
+
     /// Closest hit distance per ray (t[i] for rays[i], +inf on a miss) through rtcIntersect1,
     /// parallelised exactly like SceneTracer: tbb::parallel_for over rays, 256 rays per task.
     void intersect(std::span<const Rayf> rays, std::span<float> t) const;
@@ -41,6 +49,28 @@ public:
 
 private:
     RTCScene scene_ = nullptr;
+    std::int64_t bytes_ = 0;  ///< allocated bytes, as bytes()
 };
+
+/// A committed Embree scene and the time its build took.
+struct BuiltScene {
+    std::unique_ptr<EmbreeScene> scene;
+    double build_ms = 0;
+};
+
+/// The Embree scene of benchmark scene `scene` (bench/trace_fixture.h) at quality q, built once
+/// per process (the timed commit in build_ms).
+const BuiltScene& cached_embree_scene(const std::string& scene, RTCBuildQuality q);
+
+/// How Embree and our bvh:binned tracer compare on the first 1000 rays of a set.
+struct Agreement {
+    std::size_t checked = 0;  ///< rays compared
+    std::size_t agree = 0;    ///< rays on which both agree
+    std::size_t hits = 0;     ///< agreeing rays that hit (shadow: are blocked)
+};
+
+/// Traces the first 1000 rays of (scene, kind) with e and with bvh:binned: a ray agrees when
+/// both miss, or both hit with |t_embree - t_ours| <= 1e-4 |t_ours| (shadow: same occlusion).
+Agreement embree_agreement(const EmbreeScene& e, const std::string& scene, RayKind kind);
 
 }  // namespace rtlab::bench

@@ -2,3 +2,5 @@
 #include "bench/benchmarks.h"
 
 void rtlab::bench::register_embree_benchmarks() {}
+
+void rtlab::bench::register_issue12_embree_benchmarks() {}

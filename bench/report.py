@@ -17,8 +17,14 @@ cost along every swept parameter (e.g. max_leaf), to --out (the whole file) and 
 Every table and plot records the command, git revision, compiler and CPU. A benchmark family
 missing from the run is skipped with a note.
 
+With --suite issue12 it runs `rtlab_bench --suite issue12` instead and writes issue 12's target
+table (measure | target | measured ratio | status, per-structure tables, the headline) between
+`<!-- issue12:begin -->` and `<!-- issue12:end -->` (bench/report_issue12.py), leaving the rest
+of the file alone.
+
 Example: python3 bench/report.py --bench build/release/bench/rtlab_bench --quick \\
              --out docs/results.md --plots docs/plots
+         python3 bench/report.py --suite issue12 --out docs/results.md   (about 15 minutes)
 Smoke test (synthetic data, no executable needed): python3 bench/report.py --self-test
 """
 import argparse
@@ -32,6 +38,7 @@ import sys
 import tempfile
 import time
 
+import report_issue12
 from report_common import (
     import_pyplot,
     provenance,
@@ -439,14 +446,14 @@ class Report:
         return "\n".join(self.lines) + "\n"
 
 
-def write_markdown(path, generated):
+def write_markdown(path, generated, begin=BEGIN, end=END):
     old = ""
     if os.path.exists(path):
         with open(path) as f:
             old = f.read()
-    if BEGIN in old and END in old:
-        head, rest = old.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1]
+    if begin in old and end in old:
+        head, rest = old.split(begin, 1)
+        tail = rest.split(end, 1)[1]
         text = head + generated.rstrip("\n") + tail
     elif old:
         text = old.rstrip("\n") + "\n\n" + generated
@@ -515,6 +522,16 @@ def self_test(plt):
         "no failed section": "failed:" not in text,
         "plots written": all(os.path.getsize(p) > 1000 for p in rep.written),
     }
+    issue = "\n".join(report_issue12.section(report_issue12.synthetic_rows(), "prov"))
+    write_markdown(md, issue + "\n", report_issue12.BEGIN, report_issue12.END)
+    text2 = open(md).read()
+    checks["issue12 table"] = ("| best rtlab layout / Embree medium, triangles, primary | >= 1.0x "
+                               "| 0.667x | **below target** (bvh:pair,from=pbinned) |" in text2 and
+                               "| best binary BVH / Embree medium, primary | >= 0.5x | 0.667x | "
+                               "met" in text2)
+    checks["issue12 build row"] = "bvh:pbinned), 1 thread / Embree medium build" in text2
+    checks["issue12 keeps the main report"] = BEGIN in text2 and "### torus" in text2
+    checks["issue12 headline"] = "bvh      primary  best bvh:pair,from=pbinned" in text2
     failed = [k for k, ok in checks.items() if not ok]
     shutil.rmtree(tmp)
     print(f"{len(checks) - len(failed)} passed, {len(failed)} failed")
@@ -533,6 +550,12 @@ def main():
                     help="rtlab_bench executable to run (ignored with --json)")
     ap.add_argument("--quick", action="store_true", help="pass --quick to rtlab_bench")
     ap.add_argument("--filter", default="", help="--benchmark_filter regex for rtlab_bench")
+    ap.add_argument("--suite", default="all", choices=["all", "issue12"],
+                    help="issue12: run rtlab_bench --suite issue12 and write the target table")
+    ap.add_argument("--cpu", action="store_true",
+                    help="with --suite issue12: one-thread rows timed by CPU time (shared machine)")
+    ap.add_argument("--headline", action="store_true",
+                    help="with --suite issue12: also print the headline on stdout")
     ap.add_argument("--json", help="read this benchmark JSON instead of running rtlab_bench")
     ap.add_argument("--save-json", help="also keep the JSON of the run here")
     ap.add_argument("--out", default="docs/results.md",
@@ -575,6 +598,8 @@ def main():
         cmd = [args.bench, f"--benchmark_out={tmp}", "--benchmark_out_format=json"]
         if args.quick:
             cmd.append("--quick")
+        if args.suite != "all":
+            cmd += ["--suite", args.suite]
         if args.filter:
             cmd.append(f"--benchmark_filter={args.filter}")
         print("report: running " + " ".join(cmd), file=sys.stderr)
@@ -589,15 +614,26 @@ def main():
         wall = f"{elapsed:.1f} s"
         data.setdefault("context", {})["rtlab_report_wall"] = wall
         shown = [args.bench] + (["--quick"] if args.quick else []) + (
+            ["--suite", args.suite] if args.suite != "all" else []) + (
             [f"--benchmark_filter='{args.filter}'"] if args.filter else [])
         command = " ".join(shown) + " --benchmark_out_format=json"
         data["context"]["rtlab_report_command"] = command
         if args.save_json:
             with open(args.save_json, "w") as f:
                 json.dump(data, f, indent=1)
-    os.makedirs(args.plots, exist_ok=True)
     prov = provenance(data.get("context", {}), command, root)
     prov["wall"] = wall
+    if args.suite == "issue12":
+        rows = load_rows(data)
+        lines = report_issue12.section(rows, prov_line(prov) + f" Wall time of the run: {wall}.",
+                                       args.cpu)
+        write_markdown(args.out, "\n".join(lines) + "\n", report_issue12.BEGIN,
+                       report_issue12.END)
+        if args.headline:
+            print("\n".join(report_issue12.Issue12(rows, args.cpu).headline()))
+        print(f"report: wrote the issue12 table into {args.out}", file=sys.stderr)
+        return 0
+    os.makedirs(args.plots, exist_ok=True)
     rep = Report(load_rows(data), prov, args.out, args.plots, args.heatmaps, plt)
     write_markdown(args.out, rep.build())
     print(f"report: wrote {args.out} and {len(rep.written)} images in {args.plots}",

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace rtlab::bench {
@@ -47,8 +48,39 @@ int size_suffix(std::string_view name, std::string_view prefix) {
     return k;
 }
 
+// The scene with every polygon fanned into triangles (one mesh per polygon, same material), so
+// Embree, which has no polygon geometry, can trace the same primitives.
+Scene polygons_as_meshes(const Scene& s) {
+    Scene out;
+    out.camera = s.camera;
+    out.background = s.background;
+    out.lights = s.lights;
+    out.materials = s.materials;
+    for (const ObjectRef& r : s.order) {
+        visit_object(s, r, [&]<class P>(const auto& o) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(o)>, PolygonObject>) {
+                MeshObject m;
+                m.material = o.material;
+                m.mesh.positions = o.vertices;
+                for (std::uint32_t i = 1; i + 1 < o.vertices.size(); ++i) {
+                    m.mesh.triangles.push_back({0, i, i + 1});
+                }
+                out.add(std::move(m));
+            } else {
+                out.add(o);
+            }
+        });
+    }
+    return out;
+}
+
 Scene make_bench_scene(const std::string& name) {
     gen::GenOptions o;
+    if (const int k = size_suffix(name, "flake_meshfloor"); k >= 0) {
+        o.size = k;
+        o.as_mesh = true;
+        return polygons_as_meshes(gen::generate("flake", o));
+    }
     if (const int k = size_suffix(name, "flake_mesh"); k >= 0) {
         o.size = k;
         o.as_mesh = true;

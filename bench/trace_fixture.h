@@ -5,12 +5,13 @@
 // Scene names encode the generator and its size:
 //   flake_mesh<k>     SPD sphere flake of size k, tessellated (uv:16x8), WITHOUT the floor;
 //   flake_spheres<k>  the same flake as analytic spheres, WITHOUT the floor;
+//   flake_meshfloor<k> the tessellated flake WITH its floor as two triangles (a second mesh);
 //   soup              random triangle soup, size 6 (65536 triangles);
 //   stadium           teapot in a stadium, size 5 (12300 triangles);
 //   mount             fractal terrain, size 6 (8192 triangles) plus 4 analytic spheres.
 // The flake generator adds a floor polygon (two triangles as mesh). Embree has no polygon
-// geometry, so both flake variants drop the floor: our structures and Embree then see exactly the
-// same primitives, and flake_mesh<k> and flake_spheres<k> differ only in tessellation.
+// geometry, so flake_mesh and flake_spheres drop the floor: our structures and Embree then see
+// exactly the same primitives, and flake_mesh<k> and flake_spheres<k> differ only in tessellation.
 
 #include "intersect/bounds.h"
 #include "intersect/ray.h"

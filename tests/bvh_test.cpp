@@ -15,11 +15,12 @@
 namespace rtlab {
 namespace {
 
-/// The names of every BVH row of the registry ("bvh:..."), in registry order.
+/// The names of every registry row that builds a binary Bvh (builders, not converted layouts),
+/// in registry order.
 std::vector<std::string> bvh_rows() {
     std::vector<std::string> out;
     for (const AccelEntry& e : accel_registry()) {
-        if (e.name.starts_with("bvh:")) {
+        if (std::holds_alternative<Bvh>(e.build(BuildInput{}, default_spec(e)))) {
             out.emplace_back(e.name);
         }
     }
@@ -271,4 +272,80 @@ TEST_CASE("info() reports the analytic SAH cost of a two-leaf tree", "[accel][bv
     CHECK(info.refs_per_prim == 1.0);
     CHECK(info.bytes_per_prim == Approx((3 * 32 + 2 * 4) / 2.0));
 }
+}  // namespace rtlab
+
+namespace rtlab {
+
+TEST_CASE("parallel binned SAH builds the same tree for 1, 2 and 4 threads", "[accel][bvh]") {
+    // 70000 primitives: above the builder's thresholds for parallel binning and partitioning
+    // (65536) and for subtree tasks (4096), so every parallel path runs.
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    CAPTURE(static_cast<int>(kind));
+    const test::Soup soup = test::random_soup(kind, 5, 70000);
+    const Bvh one = build_with(soup.boxes, "bvh:pbinned", 4, ",threads=1");
+    check_layout(one, soup.boxes);
+    for (const int threads : {2, 4}) {
+        CAPTURE(threads);
+        CHECK(one ==
+              build_with(soup.boxes, "bvh:pbinned", 4, ",threads=" + std::to_string(threads)));
+    }
+    CHECK(one == build_with(soup.boxes, "bvh:pbinned", 4, ",threads=0"));
+    // The same SAH quality as the sequential binned builder, within a few percent.
+    const double par = one.info().sah_cost;
+    const double seq = build_with(soup.boxes, "bvh:binned").info().sah_cost;
+    CAPTURE(par, seq);
+    CHECK(par <= seq * 1.05);
+}
+
+TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[accel][bvh]") {
+    const std::string from = GENERATE("pbinned", "binned", "sweep", "lbvh", "median");
+    const auto count = GENERATE(0u, 1u, 2u, 5u, 1000u);
+    CAPTURE(from, count);
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);
+    const Bvh source = build_with(soup.boxes, "bvh:" + from);
+    const AnyAccel any = build_accel("bvh:pair,from=" + from, soup.input());
+    const PairBvh& pair = std::get<PairBvh>(any);
+    REQUIRE(pair.validate().empty());
+    CHECK(pair == PairBvh::convert(source));
+    CHECK(pair.prim_ids == source.prim_ids);
+    CHECK(pair.bounds() == source.bounds());
+    const AccelInfo pi = pair.info(), si = source.info();
+    CHECK(pi.leaves == si.leaves);
+    CHECK(pi.max_depth == si.max_depth);
+    CHECK(pi.sah_cost == si.sah_cost);
+    CHECK(source.nodes.size() == (count == 0 ? 0 : 2 * pi.nodes + 1));
+    // Same leaves, same primitive tests: the closest hit's t is the same on every ray.
+    for (const Rayf& ray : test::random_rays(soup, 3, 200)) {
+        Hit a, b;
+        Rayf ra = ray, rb = ray;
+        const bool ha = source.intersect(ra, soup.closest_hit(a));
+        const bool hb = pair.intersect(rb, soup.closest_hit(b));
+        CHECK(ha == hb);
+        CHECK(a.t == b.t);
+        CHECK(source.occluded(ray, soup.any_hit()) == pair.occluded(ray, soup.any_hit()));
+    }
+}
+
+TEST_CASE("pair layout skips a pushed child once a nearer hit closes the window", "[accel][bvh]") {
+    // Two unit boxes along +x at x in [0,1] and [3,4]; a ray from x = -1 hits the first box's
+    // primitive at t = 1, so the farther leaf (entry t = 4) is never tested.
+    const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{3, 0, 0}, {4, 1, 1}}};
+    const PairBvh pair = PairBvh::convert(build_with(boxes, "bvh:binned", 1));
+    REQUIRE(pair.nodes.size() == 1);
+    Rayf ray{{-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 100};
+    std::vector<std::uint32_t> tested;
+    TraversalStats st;
+    const bool hit = pair.intersect(
+        ray,
+        [&](std::uint32_t id, Rayf& r) {
+            tested.push_back(id);
+            r.tmax = std::min(r.tmax, boxes[id].lo.x + 1.0f);  // hits at the box's near face
+            return true;
+        },
+        st);
+    CHECK(hit);
+    CHECK(tested == std::vector<std::uint32_t>{0});
+    CHECK(st.nodes == 3);  // the root box, then both children at once
+}
+
 }  // namespace rtlab

@@ -20,10 +20,10 @@ for scene in flake.ply soup.ply; do
             -o "$tmp/$scene.$kind.rays" 2>/dev/null
         anyhit=()
         [[ $kind == shadow ]] && anyhit=(--any-hit)
-        "$RTLAB" trace --scene "$tmp/$scene" --rays "$tmp/$scene.$kind.rays" --accel brute \
+        "$RTLAB" trace --repeat 1 --no-warmup --scene "$tmp/$scene" --rays "$tmp/$scene.$kind.rays" --accel brute \
             "${anyhit[@]}" --hits "$tmp/ref.hits" >/dev/null
         for accel in $accels; do
-            "$RTLAB" trace --scene "$tmp/$scene" --rays "$tmp/$scene.$kind.rays" \
+            "$RTLAB" trace --repeat 1 --no-warmup --scene "$tmp/$scene" --rays "$tmp/$scene.$kind.rays" \
                 --accel "$accel" "${anyhit[@]}" --hits "$tmp/x.hits" >"$tmp/trace.json"
             if ! "$RTLAB" compare "$tmp/ref.hits" "$tmp/x.hits" "${anyhit[@]}" >"$tmp/cmp.json"; then
                 echo "FAIL: $accel on $scene ($kind): $(cat "$tmp/cmp.json")"
@@ -35,7 +35,7 @@ done
 # Results do not depend on the thread count: byte-identical hit files with 1 and 2 threads.
 for accel in bvh:binned kdtree:sah grid:uniform; do
     for threads in 1 2; do
-        "$RTLAB" trace --scene "$tmp/flake.ply" --rays "$tmp/flake.ply.random.rays" --accel "$accel" \
+        "$RTLAB" trace --repeat 1 --no-warmup --scene "$tmp/flake.ply" --rays "$tmp/flake.ply.random.rays" --accel "$accel" \
             --threads $threads --hits "$tmp/t$threads.hits" >/dev/null
     done
     cmp -s "$tmp/t1.hits" "$tmp/t2.hits" || { echo "FAIL: $accel hits differ between 1 and 2 threads"; fail=1; }

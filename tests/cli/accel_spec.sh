@@ -4,11 +4,12 @@
 "$RTLAB" gen soup --size 1 --seed 5 -o "$tmp/spec_soup.ply" 2>/dev/null
 "$RTLAB" rays --scene "$tmp/spec_soup.ply" --kind primary --count 2000 --seed 2 \
     -o "$tmp/spec.rays" 2>/dev/null
-"$RTLAB" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" --accel brute \
+"$RTLAB" trace --repeat 1 --no-warmup --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
+    --accel brute \
     --hits "$tmp/spec_ref.hits" >/dev/null
 for leaf in 1 8; do
-    expect_ok "spec max_leaf=$leaf" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
-        --accel "bvh:binned,max_leaf=$leaf" --stats --hits "$tmp/spec_$leaf.hits"
+    expect_ok "spec max_leaf=$leaf" trace --repeat 1 --no-warmup --scene "$tmp/spec_soup.ply" \
+        --rays "$tmp/spec.rays" --accel "bvh:binned,max_leaf=$leaf" --stats --hits "$tmp/spec_$leaf.hits"
     cp "$tmp/out" "$tmp/spec_$leaf.json"
     grep -q "\"accel\":\"bvh:binned,max_leaf=$leaf,bins=16,ct=1,ci=1\"" "$tmp/spec_$leaf.json" ||
         { echo "FAIL (spec): JSON does not name the canonical spec: $(cat "$tmp/spec_$leaf.json")"; fail=1; }
@@ -23,6 +24,11 @@ for key in nodes_per_ray bytes_per_prim; do
         echo "FAIL (spec): max_leaf=1 and max_leaf=8 report the same $key"; fail=1
     fi
 done
+# Timing defaults: one untimed warm-up run, then the median of 5 timed runs.
+expect_ok "trace timing defaults" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
+    --accel bvh:pair
+grep -q '"repeat":5' "$tmp/out" && grep -q '"warmup":true' "$tmp/out" ||
+    { echo "FAIL (trace): default timing is not warm-up + 5 repeats: $(cat "$tmp/out")"; fail=1; }
 expect_error "spec unknown key" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
     --accel 'bvh:binned,leaf=8'
 grep -q "unknown parameter 'leaf'" "$tmp/err" || { echo "FAIL (spec): $(cat "$tmp/err")"; fail=1; }

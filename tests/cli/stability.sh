@@ -11,7 +11,7 @@ if [[ -s $tmp/wt/sphere.ply && -s $tmp/wt/inside.rays ]]; then
     accels=$("$RTLAB" list --names)
     [[ -n $accels ]] || { echo "FAIL (stability leaks): rtlab list named no structure"; fail=1; }
     for accel in $accels; do
-        if "$RTLAB" trace --scene "$tmp/wt/sphere.ply" --rays "$tmp/wt/inside.rays" \
+        if "$RTLAB" trace --repeat 1 --no-warmup --scene "$tmp/wt/sphere.ply" --rays "$tmp/wt/inside.rays" \
             --accel "$accel" --method watertight --robust >"$tmp/trace.json" 2>"$tmp/err"; then
             hits=$(grep -o '"hits":[0-9]*' "$tmp/trace.json" | cut -d: -f2)
             [[ $hits == 3000 ]] ||

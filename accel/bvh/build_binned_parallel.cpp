@@ -1,0 +1,655 @@
+// Parallel binned SAH (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies",
+// with the parallel scheme of its section 4 and of Embree's builders): each node bins all three
+// axes in one pass over 32-byte primitive references (box + id, moved by the partition, so no id
+// indirection), takes the children's boxes from the bins and their centroid bounds from the
+// partition. Nodes of at least `parallel_min` primitives bin and partition data-parallel in fixed
+// blocks; subtrees of at least `task_min` primitives are tasks writing their own node chunks,
+// stitched at the end (as madmann91/bvh's mini-tree builder stitches its mini-trees).
+// Deterministic: every decision depends on the node's primitives only (box unions and counts are
+// exact under any grouping, the block partition is stable), so any thread count gives the same
+// tree. Cost: O(N log N) work, O(N) memory besides the tree.
+
+#include "accel/bvh/build_common.h"
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace rtlab {
+
+namespace {
+
+// Subtrees with at least this many primitives are built by their own task into their own chunk.
+constexpr std::uint32_t task_min = 4096;
+// Nodes with at least this many primitives bin and partition in parallel blocks.
+constexpr std::uint32_t parallel_min = 1u << 16;
+// Block size of the parallel passes (fixed, so the work split never depends on the threads).
+constexpr std::size_t block = 1u << 14;
+
+/// Four floats with the few operations binning needs (SSE when available).
+struct V4 {
+#if defined(__SSE2__)
+    __m128 v;
+    static V4 load(const float* p) {
+        return {_mm_loadu_ps(p)};
+    }
+    static V4 splat(float x) {
+        return {_mm_set1_ps(x)};
+    }
+    static V4 set(float x, float y, float z) {
+        return {_mm_setr_ps(x, y, z, 0.0f)};
+    }
+    friend V4 vmin(V4 a, V4 b) {
+        return {_mm_min_ps(a.v, b.v)};
+    }
+    friend V4 vmax(V4 a, V4 b) {
+        return {_mm_max_ps(a.v, b.v)};
+    }
+    friend V4 operator+(V4 a, V4 b) {
+        return {_mm_add_ps(a.v, b.v)};
+    }
+    friend V4 operator-(V4 a, V4 b) {
+        return {_mm_sub_ps(a.v, b.v)};
+    }
+    friend V4 operator*(V4 a, V4 b) {
+        return {_mm_mul_ps(a.v, b.v)};
+    }
+    /// Lanes 0..2 kept, lane 3 zeroed.
+    V4 xyz() const {
+        return {_mm_and_ps(v, _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))};
+    }
+    /// Each lane clamped to [0, top] (a NaN lane becomes 0) and truncated to an integer.
+    void bins(float top, int out[4]) const {
+        const __m128 f = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(top));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(f));
+    }
+    void store(float* p) const {
+        _mm_storeu_ps(p, v);
+    }
+    /// x*y + y*z + z*x of lanes 0..2, summed in that order.
+    float cross_sum() const {
+        const __m128 p = _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 0, 2, 1)));
+        alignas(16) float o[4];
+        _mm_store_ps(o, p);
+        return o[0] + o[1] + o[2];
+    }
+#else
+    float v[4];
+    static V4 load(const float* p) {
+        return {{p[0], p[1], p[2], p[3]}};
+    }
+    static V4 splat(float x) {
+        return {{x, x, x, x}};
+    }
+    static V4 set(float x, float y, float z) {
+        return {{x, y, z, 0.0f}};
+    }
+    template <class F>
+    static V4 zip(V4 a, V4 b, F f) {
+        return {{f(a.v[0], b.v[0]), f(a.v[1], b.v[1]), f(a.v[2], b.v[2]), f(a.v[3], b.v[3])}};
+    }
+    friend V4 vmin(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x < y ? x : y; });
+    }
+    friend V4 vmax(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x > y ? x : y; });
+    }
+    friend V4 operator+(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x + y; });
+    }
+    friend V4 operator-(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x - y; });
+    }
+    friend V4 operator*(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x * y; });
+    }
+    V4 xyz() const {
+        return {{v[0], v[1], v[2], 0.0f}};
+    }
+    void bins(float top, int out[4]) const {
+        for (int i = 0; i < 4; ++i) {
+            const float f = v[i] > 0.0f ? v[i] : 0.0f;
+            out[i] = static_cast<int>(f < top ? f : top);
+        }
+    }
+    void store(float* p) const {
+        std::copy(v, v + 4, p);
+    }
+    float cross_sum() const {
+        return v[0] * v[1] + v[1] * v[2] + v[2] * v[0];
+    }
+#endif
+};
+
+/// A primitive reference: its box and id (the id rides in the box minimum's fourth float).
+struct alignas(32) PrimRef {
+    float lo[3];
+    std::uint32_t id;
+    float hi[3];
+    std::uint32_t pad;
+
+    V4 vlo() const { return V4::load(lo); }
+    V4 vhi() const { return V4::load(hi); }
+    /// Twice the box centre (lo + hi), lane 3 zero.
+    V4 twice_center() const { return (vlo() + vhi()).xyz(); }
+};
+
+/// A box as two V4 (lane 3 unused); empty by default.
+struct Box {
+    V4 lo = V4::splat(std::numeric_limits<float>::infinity());
+    V4 hi = V4::splat(-std::numeric_limits<float>::infinity());
+
+    void extend(const Box& b) {
+        lo = vmin(lo, b.lo);
+        hi = vmax(hi, b.hi);
+    }
+    void extend(V4 p) {
+        lo = vmin(lo, p);
+        hi = vmax(hi, p);
+    }
+    void extend(const PrimRef& r) {
+        lo = vmin(lo, r.vlo());
+        hi = vmax(hi, r.vhi());
+    }
+    /// Half the surface area of a box known to be non-empty (no stores, no checks).
+    float half_area_filled() const { return (hi - lo).cross_sum(); }
+    /// Half the surface area; 0 when empty.
+    float half_area() const {
+        float a[4], b[4];
+        lo.store(a);
+        hi.store(b);
+        const float dx = b[0] - a[0], dy = b[1] - a[1], dz = b[2] - a[2];
+        if (!(dx >= 0.0f && dy >= 0.0f && dz >= 0.0f)) {
+            return 0.0f;
+        }
+        return dx * dy + dy * dz + dz * dx;
+    }
+    Bounds3f bounds() const {
+        float a[4], b[4];
+        lo.store(a);
+        hi.store(b);
+        return {{a[0], a[1], a[2]}, {b[0], b[1], b[2]}};
+    }
+};
+
+/// A node's primitive range with its box and the bounds of its doubled centroids.
+struct Range {
+    std::uint32_t b = 0, e = 0;
+    Box box;
+    Box cent;  ///< bounds of lo + hi over the range
+    std::uint32_t size() const { return e - b; }
+};
+
+/// Bin of doubled centroid c on one axis: the same float steps as V4::bins, one lane.
+std::uint32_t bin_of(float c, float lo, float scale, std::uint32_t bins) {
+    const float f = (c - lo) * scale;
+    const float top = static_cast<float>(bins - 1);
+    const float g = f > 0.0f ? f : 0.0f;  // NaN (0 * inf) -> 0, as _mm_max_ps(f, 0)
+    return static_cast<std::uint32_t>(g < top ? g : top);
+}
+
+/// Bin boxes and counts of all three axes.
+struct Bins {
+    std::uint32_t count = 0;
+    std::vector<Box> box;              // [axis * count + k]
+    std::vector<std::uint32_t> prims;  // [axis * count + k]
+
+    explicit Bins(std::uint32_t n) : count(n), box(3 * n), prims(3 * n, 0) {}
+    /// Empty bins, n per axis (reuses the storage).
+    void reset(std::uint32_t n) {
+        count = n;
+        box.assign(3 * std::size_t{n}, Box{});
+        prims.assign(3 * std::size_t{n}, 0);
+    }
+    void merge(const Bins& o) {
+        for (std::size_t i = 0; i < box.size(); ++i) {
+            box[i].extend(o.box[i]);
+            prims[i] += o.prims[i];
+        }
+    }
+};
+
+class Builder {
+public:
+    Builder(const BuildInput& in, const Bvh::Config& cfg) : config_(cfg), boxes_(in.bounds) {}
+
+    Bvh run() {
+        Bvh bvh;
+        bvh.prim_count = static_cast<std::uint32_t>(boxes_.size());
+        bvh.config = config_;
+        Range root = collect();
+        bvh.unreferenced_count = bvh.prim_count - root.size();
+        if (root.size() == 0) {
+            return bvh;
+        }
+        Chunk top;
+        top.nodes.emplace_back();
+        tbb::task_group tasks;
+        subtree(top, 0, root, 0, tasks);
+        tasks.wait();
+        stitch(top, bvh);
+        bvh.prim_ids.resize(refs_.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs_.size(), block),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  bvh.prim_ids[i] = refs_[i].id;
+                              }
+                          });
+        return bvh;
+    }
+
+private:
+    /// A task's share of the output: nodes[0] is its root (it lands in the parent chunk's slot),
+    /// nodes[1..] its pairs; subs are chunks whose roots fill the given local slots.
+    struct Chunk {
+        std::vector<BvhNode> nodes;
+        struct Sub {
+            std::uint32_t slot;
+            std::unique_ptr<Chunk> chunk;
+        };
+        std::vector<Sub> subs;
+    };
+
+    /// The split of a range, or none for a leaf.
+    struct Decision {
+        bool leaf = true;
+        std::uint32_t axis = 0;
+        Range left, right;
+    };
+
+    Bvh::Config config_;
+    std::span<const Bounds3f> boxes_;
+    std::vector<PrimRef> refs_;
+    std::vector<PrimRef> scratch_;  // partition buffer for the parallel passes
+
+    /// The usable primitives as references, in id order, with the root box and centroid bounds.
+    Range collect() {
+        const std::size_t n = boxes_.size();
+        const std::size_t blocks = (n + block - 1) / block;
+        std::vector<std::uint32_t> offset(blocks + 1, 0);
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            std::uint32_t c = 0;
+            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+                c += is_usable_box(boxes_[i]) ? 1 : 0;
+            }
+            offset[k + 1] = c;
+        });
+        for (std::size_t k = 0; k < blocks; ++k) {
+            offset[k + 1] += offset[k];
+        }
+        refs_.resize(offset[blocks]);
+        if (refs_.size() >= parallel_min) {
+            scratch_.resize(refs_.size());
+        }
+        std::vector<Range> part(blocks);
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            std::uint32_t out = offset[k];
+            Range& r = part[k];
+            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+                const Bounds3f& bb = boxes_[i];
+                if (is_usable_box(bb)) {
+                    PrimRef& p = refs_[out++];
+                    p = {{bb.lo.x, bb.lo.y, bb.lo.z},
+                         static_cast<std::uint32_t>(i),
+                         {bb.hi.x, bb.hi.y, bb.hi.z},
+                         0};
+                    r.box.extend(p);
+                    r.cent.extend(p.twice_center());
+                }
+            }
+        });
+        Range root;
+        root.e = static_cast<std::uint32_t>(refs_.size());
+        for (const Range& r : part) {
+            root.box.extend(r.box);
+            root.cent.extend(r.cent);
+        }
+        return root;
+    }
+
+    /// Builds the subtree of r into chunk ch at local slot `slot`; big children become tasks.
+    void subtree(Chunk& ch,
+                 std::uint32_t slot,
+                 const Range& r,
+                 std::uint32_t depth,
+                 tbb::task_group& tasks) {
+        Decision d = decide(r, depth);
+        if (d.leaf) {
+            ch.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
+            return;
+        }
+        const auto left = static_cast<std::uint32_t>(ch.nodes.size());
+        ch.nodes.emplace_back();
+        ch.nodes.emplace_back();
+        ch.nodes[slot] = BvhNode::make_inner(r.box.bounds(), left, d.axis);
+        for (std::uint32_t i = 0; i < 2; ++i) {
+            const Range& c = i == 0 ? d.left : d.right;
+            if (c.size() >= task_min) {
+                auto sub = std::make_unique<Chunk>();
+                Chunk* raw = sub.get();
+                ch.subs.push_back({left + i, std::move(sub)});
+                tasks.run([this, raw, c, depth, &tasks]() {
+                    raw->nodes.reserve(std::min<std::size_t>(
+                        c.size(), 2 * task_min));  // most nodes go to sub-chunks
+                    raw->nodes.emplace_back();
+                    subtree(*raw, 0, c, depth + 1, tasks);
+                });
+            } else {
+                subtree(ch, left + i, c, depth + 1, tasks);
+            }
+        }
+    }
+
+    /// Leaf or split for range r at `depth`: SAH over the bins, else the object median when the
+    /// range is too big for a leaf or the depth guard asks for balance.
+    Decision decide(const Range& r, std::uint32_t depth) {
+        Decision d;
+        const std::uint32_t n = r.size();
+        if (n <= 1) {
+            return d;
+        }
+        const bool balance = bvh_detail::TopDown::must_balance(depth, n);
+        const std::uint32_t nb = config_.bin_count;
+        float cl[4], ch[4];
+        r.cent.lo.store(cl);
+        r.cent.hi.store(ch);
+        const bool spread = ch[0] > cl[0] || ch[1] > cl[1] || ch[2] > cl[2];
+        if (!balance && nb >= 2 && spread) {
+            float scale[3];
+            for (int a = 0; a < 3; ++a) {
+                const float extent = ch[a] - cl[a];
+                scale[a] = extent > 0.0f ? static_cast<float>(nb) / extent : 0.0f;
+            }
+            // Small nodes reuse this thread's bins: nothing between binning and partitioning
+            // them can run another task on this thread. Big nodes bin in parallel (their
+            // thread may run other tasks while it waits), so they own their bins.
+            thread_local Bins small(0);
+            Bins big(0);
+            Bins& bins = r.size() < parallel_min ? small : big;
+            bin(r, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins);
+            float best = std::numeric_limits<float>::infinity();
+            std::uint32_t best_axis = 0, best_bin = 0;
+            sweep(bins, ch, cl, best, best_axis, best_bin);
+            if (best < std::numeric_limits<float>::infinity()) {
+                const float area = r.box.half_area();
+                const float leaf_cost = config_.intersection_cost * static_cast<float>(n) * area;
+                const float split_cost =
+                    config_.traversal_cost * area + config_.intersection_cost * best;
+                if (n <= config_.max_leaf_size && leaf_cost <= split_cost) {
+                    return d;
+                }
+                d.leaf = false;
+                d.axis = best_axis;
+                partition(r, bins, best_axis, best_bin, cl[best_axis], scale[best_axis], d);
+                return d;
+            }
+        }
+        if (n <= config_.max_leaf_size && !balance) {
+            return d;
+        }
+        median(r, d);
+        return d;
+    }
+
+    /// All three axes binned over r into out (in parallel blocks when r is big).
+    void bin(const Range& r, V4 lo, V4 scale, Bins& out) const {
+        const std::uint32_t nb = config_.bin_count;
+        const auto run = [&](std::size_t b, std::size_t e, Bins& acc) {
+            const float top = static_cast<float>(nb - 1);
+            alignas(16) int k[4];
+            for (std::size_t i = b; i < e; ++i) {
+                const PrimRef& p = refs_[i];
+                ((p.twice_center() - lo) * scale).bins(top, k);
+                for (std::uint32_t a = 0; a < 3; ++a) {
+                    const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
+                    acc.box[s].extend(p);
+                    ++acc.prims[s];
+                }
+            }
+        };
+        if (r.size() < parallel_min) {
+            out.reset(nb);
+            run(r.b, r.e, out);
+            return;
+        }
+        out = tbb::parallel_reduce(
+            tbb::blocked_range<std::size_t>(r.b, r.e, block), Bins(nb),
+            [&](const tbb::blocked_range<std::size_t>& br, Bins acc) {
+                run(br.begin(), br.end(), acc);
+                return acc;
+            },
+            [](Bins a, const Bins& b) {
+                a.merge(b);
+                return a;
+            });
+    }
+
+    /// The cheapest split over every axis with spread and every bin boundary (unnormalised cost
+    /// sum A * n with half areas; ties keep the first axis, then the first bin).
+    void sweep(const Bins& bins,
+               const float* ch,
+               const float* cl,
+               float& best,
+               std::uint32_t& best_axis,
+               std::uint32_t& best_bin) const {
+        const std::uint32_t nb = bins.count;
+        thread_local std::vector<float> right_area;
+        thread_local std::vector<std::uint32_t> right_count;
+        right_area.resize(nb);
+        right_count.resize(nb);
+        for (std::uint32_t a = 0; a < 3; ++a) {
+            if (!(ch[a] > cl[a])) {
+                continue;
+            }
+            const std::size_t base = a * nb;
+            // Empty bins leave the sums as they were, so their areas are not recomputed.
+            Box acc;
+            std::uint32_t cnt = 0;
+            float area = 0.0f;
+            for (std::uint32_t k = nb - 1; k > 0; --k) {
+                if (bins.prims[base + k] != 0) {
+                    acc.extend(bins.box[base + k]);
+                    cnt += bins.prims[base + k];
+                    area = acc.half_area_filled();
+                }
+                right_area[k - 1] = area;
+                right_count[k - 1] = cnt;
+            }
+            acc = Box{};
+            cnt = 0;
+            area = 0.0f;
+            for (std::uint32_t k = 0; k + 1 < nb; ++k) {
+                if (bins.prims[base + k] != 0) {
+                    acc.extend(bins.box[base + k]);
+                    cnt += bins.prims[base + k];
+                    area = acc.half_area_filled();
+                }
+                if (cnt == 0 || right_count[k] == 0) {
+                    continue;
+                }
+                const float cost = area * static_cast<float>(cnt) +
+                                   right_area[k] * static_cast<float>(right_count[k]);
+                if (cost < best) {
+                    best = cost;
+                    best_axis = a;
+                    best_bin = k;
+                }
+            }
+        }
+    }
+
+    /// Moves the references of bins [0, split] on `axis` to the front of r; fills d's children
+    /// (boxes from the bins, centroid bounds from the pass).
+    void partition(const Range& r,
+                   const Bins& bins,
+                   std::uint32_t axis,
+                   std::uint32_t split,
+                   float lo,
+                   float scale,
+                   Decision& d) {
+        const std::uint32_t nb = bins.count;
+        std::uint32_t left_count = 0;
+        for (std::uint32_t k = 0; k < nb; ++k) {
+            Box& side = k <= split ? d.left.box : d.right.box;
+            side.extend(bins.box[axis * nb + k]);
+            left_count += k <= split ? bins.prims[axis * nb + k] : 0;
+        }
+        const auto goes_left = [&](const PrimRef& p) {
+            return bin_of(p.lo[axis] + p.hi[axis], lo, scale, nb) <= split;
+        };
+        const std::uint32_t mid = r.b + left_count;
+        if (r.size() < parallel_min) {
+            // In place: swap misplaced pairs from both ends.
+            std::uint32_t i = r.b, j = r.e;
+            for (;;) {
+                while (i < j && goes_left(refs_[i])) {
+                    d.left.cent.extend(refs_[i++].twice_center());
+                }
+                while (i < j && !goes_left(refs_[j - 1])) {
+                    d.right.cent.extend(refs_[--j].twice_center());
+                }
+                if (i >= j) {
+                    break;
+                }
+                std::swap(refs_[i], refs_[j - 1]);
+            }
+        } else {
+            parallel_partition(r, goes_left, mid, d);
+        }
+        d.left.b = r.b;
+        d.left.e = mid;
+        d.right.b = mid;
+        d.right.e = r.e;
+    }
+
+    /// Stable partition of big ranges through scratch_: per-block counts, prefix sums, scatter,
+    /// copy back. Every step is exact whatever the threads, so the order is deterministic.
+    template <class Pred>
+    void parallel_partition(const Range& r, const Pred& goes_left, std::uint32_t mid, Decision& d) {
+        const std::size_t blocks = (r.size() + block - 1) / block;
+        std::vector<std::uint32_t> lefts(blocks + 1, 0), rights(blocks + 1, 0);
+        std::vector<Box> lc(blocks), rc(blocks);
+        const auto span_of = [&](std::size_t k) {
+            return std::pair<std::size_t, std::size_t>{
+                r.b + k * block, std::min<std::size_t>(r.e, r.b + (k + 1) * block)};
+        };
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            const auto [b, e] = span_of(k);
+            std::uint32_t c = 0;
+            for (std::size_t i = b; i < e; ++i) {
+                if (goes_left(refs_[i])) {
+                    ++c;
+                    lc[k].extend(refs_[i].twice_center());
+                } else {
+                    rc[k].extend(refs_[i].twice_center());
+                }
+            }
+            lefts[k + 1] = c;
+            rights[k + 1] = static_cast<std::uint32_t>(e - b) - c;
+        });
+        for (std::size_t k = 0; k < blocks; ++k) {
+            lefts[k + 1] += lefts[k];
+            rights[k + 1] += rights[k];
+            d.left.cent.extend(lc[k]);
+            d.right.cent.extend(rc[k]);
+        }
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            const auto [b, e] = span_of(k);
+            std::size_t l = r.b + lefts[k], rr = mid + rights[k];
+            for (std::size_t i = b; i < e; ++i) {
+                scratch_[goes_left(refs_[i]) ? l++ : rr++] = refs_[i];
+            }
+        });
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            const auto [b, e] = span_of(k);
+            std::copy(scratch_.begin() + static_cast<std::ptrdiff_t>(b),
+                      scratch_.begin() + static_cast<std::ptrdiff_t>(e),
+                      refs_.begin() + static_cast<std::ptrdiff_t>(b));
+        });
+    }
+
+    /// Object median of r on its largest centroid axis (ties by id), children measured by a pass.
+    void median(const Range& r, Decision& d) {
+        const std::uint32_t axis = static_cast<std::uint32_t>(r.cent.bounds().largest_axis());
+        const std::uint32_t mid = r.b + r.size() / 2;
+        std::nth_element(refs_.begin() + r.b, refs_.begin() + mid, refs_.begin() + r.e,
+                         [axis](const PrimRef& x, const PrimRef& y) {
+                             const float cx = x.lo[axis] + x.hi[axis];
+                             const float cy = y.lo[axis] + y.hi[axis];
+                             return cx < cy || (cx == cy && x.id < y.id);
+                         });
+        d.leaf = false;
+        d.axis = axis;
+        d.left.b = r.b;
+        d.left.e = mid;
+        d.right.b = mid;
+        d.right.e = r.e;
+        for (Range* c : {&d.left, &d.right}) {
+            for (std::uint32_t i = c->b; i < c->e; ++i) {
+                c->box.extend(refs_[i]);
+                c->cent.extend(refs_[i].twice_center());
+            }
+        }
+    }
+
+    /// Lays the chunks out in pre-order (a chunk's pairs, then its sub-chunks') and copies them
+    /// into bvh.nodes with their indices relocated, in parallel.
+    static void stitch(Chunk& top, Bvh& bvh) {
+        struct Place {
+            const Chunk* chunk;
+            std::uint32_t root;  // global index of local node 0
+            std::uint32_t base;  // global index of local node 1
+        };
+        std::vector<Place> places;
+        std::uint32_t next = static_cast<std::uint32_t>(top.nodes.size());
+        places.push_back({&top, 0, 1});
+        for (std::size_t p = 0; p < places.size(); ++p) {
+            const Place at = places[p];
+            for (const Chunk::Sub& s : at.chunk->subs) {
+                const std::uint32_t root = s.slot == 0 ? at.root : at.base + s.slot - 1;
+                places.push_back({s.chunk.get(), root, next});
+                next += static_cast<std::uint32_t>(s.chunk->nodes.size()) - 1;
+            }
+        }
+        bvh.nodes.resize(next);
+        tbb::parallel_for(std::size_t{0}, places.size(), [&](std::size_t p) {
+            const Place& at = places[p];
+            const std::vector<BvhNode>& src = at.chunk->nodes;
+            for (std::size_t i = 0; i < src.size(); ++i) {
+                BvhNode n = src[i];
+                if (!n.is_leaf() && n.first == 0) {
+                    continue;  // a sub-chunk's placeholder: that chunk's place writes its root
+                }
+                if (!n.is_leaf()) {
+                    n.first = at.base + n.first - 1;
+                }
+                bvh.nodes[i == 0 ? at.root : at.base + i - 1] = n;
+            }
+        });
+    }
+};
+
+}  // namespace
+
+/// Parallel binned SAH on `threads` TBB threads (0: TBB's default); the tree does not depend on
+/// the thread count.
+Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
+    Builder b(in, bvh_detail::clamped(cfg));
+    if (threads == 0) {
+        return b.run();
+    }
+    tbb::task_arena arena(static_cast<int>(threads));
+    return arena.execute([&] { return b.run(); });
+}
+
+}  // namespace rtlab

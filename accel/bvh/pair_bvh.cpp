@@ -1,0 +1,186 @@
+// PairBvh: conversion from a Bvh, size figures and the invariant check.
+
+#include "accel/bvh/pair_bvh.h"
+
+#include <algorithm>
+
+namespace rtlab {
+
+PairBvh PairBvh::convert(const Bvh& b) {
+    PairBvh p;
+    p.prim_ids = b.prim_ids;
+    p.prim_count = b.prim_count;
+    p.unreferenced_count = b.unreferenced_count;
+    p.max_leaf_size = b.config.max_leaf_size;
+    p.sah_cost = b.info().sah_cost;
+    if (b.nodes.empty()) {
+        return p;
+    }
+    const BvhNode& root = b.nodes[0];
+    p.root_box = root.bounds();
+    if (root.is_leaf()) {
+        p.root_child = root.first;
+        p.root_count = root.prim_count();
+        return p;
+    }
+    // Depth-first: a node's pair node is allocated when its parent is filled, so siblings'
+    // nodes are adjacent and a left subtree's nodes precede its right sibling's subtree.
+    struct Item {
+        std::uint32_t source;  // inner node of b
+        std::uint32_t target;  // its pair node
+    };
+    p.nodes.reserve(b.nodes.size() / 2);
+    p.nodes.emplace_back();
+    std::vector<Item> stack{{0, 0}};
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        PairNode n{};
+        Item inner[2];
+        int inner_count = 0;
+        for (std::uint32_t c = 0; c < 2; ++c) {
+            const BvhNode& child = b.nodes[b.nodes[it.source].first + c];
+            n.x[c] = child.lo.x;
+            n.x[2 + c] = child.hi.x;
+            n.y[c] = child.lo.y;
+            n.y[2 + c] = child.hi.y;
+            n.z[c] = child.lo.z;
+            n.z[2 + c] = child.hi.z;
+            if (child.is_leaf()) {
+                n.child[c] = child.first;
+                n.count[c] = child.prim_count();
+            } else {
+                n.child[c] = static_cast<std::uint32_t>(p.nodes.size());
+                n.count[c] = 0;
+                p.nodes.emplace_back();
+                inner[inner_count++] = {b.nodes[it.source].first + c, n.child[c]};
+            }
+        }
+        p.nodes[it.target] = n;
+        for (int k = inner_count - 1; k >= 0; --k) {
+            stack.push_back(inner[k]);
+        }
+    }
+    return p;
+}
+
+AccelInfo PairBvh::info() const {
+    AccelInfo i;
+    i.nodes = nodes.size();
+    i.bytes = nodes.size() * sizeof(PairNode) + prim_ids.size() * sizeof(std::uint32_t);
+    i.bytes_per_prim =
+        prim_count == 0 ? 0.0 : static_cast<double>(i.bytes) / static_cast<double>(prim_count);
+    i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    i.sah_cost = sah_cost;
+    if (prim_ids.empty()) {
+        return i;
+    }
+    if (root_count > 0) {
+        i.leaves = 1;
+        return i;
+    }
+    struct Item {
+        std::uint32_t node, depth;
+    };
+    std::vector<Item> stack{{0, 0}};
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        for (int c = 0; c < 2; ++c) {
+            const PairNode& n = nodes[it.node];
+            if (n.count[c] > 0) {
+                ++i.leaves;
+                i.max_depth = std::max(i.max_depth, it.depth + 1);
+            } else {
+                stack.push_back({n.child[c], it.depth + 1});
+            }
+        }
+    }
+    return i;
+}
+
+std::string PairBvh::validate() const {
+    if (prim_ids.size() + unreferenced_count != prim_count) {
+        return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
+               std::to_string(prim_count - unreferenced_count);
+    }
+    std::vector<char> seen(prim_count, 0);
+    for (const std::uint32_t id : prim_ids) {
+        if (id >= prim_count || seen[id]) {
+            return "primitive id " + std::to_string(id) + " out of range or repeated";
+        }
+        seen[id] = 1;
+    }
+    if (prim_ids.empty()) {
+        return nodes.empty() ? std::string{} : "nodes but no primitives";
+    }
+    std::vector<char> slot_used(prim_ids.size(), 0);
+    const auto use_leaf = [&](std::uint32_t first, std::uint32_t count) -> std::string {
+        if (count > max_leaf_size) {
+            return "leaf of " + std::to_string(count) + " > max_leaf_size";
+        }
+        if (first > prim_ids.size() || count > prim_ids.size() - first) {
+            return "leaf range outside prim_ids";
+        }
+        for (std::uint32_t s = first; s < first + count; ++s) {
+            if (slot_used[s]) {
+                return "prim_ids slot " + std::to_string(s) + " in two leaves";
+            }
+            slot_used[s] = 1;
+        }
+        return {};
+    };
+    if (root_count > 0) {
+        if (!nodes.empty()) {
+            return "a leaf root with inner nodes";
+        }
+        if (std::string e = use_leaf(root_child, root_count); !e.empty()) {
+            return "root: " + e;
+        }
+    } else {
+        std::vector<char> node_seen(nodes.size(), 0);
+        struct Item {
+            std::uint32_t node, depth;
+            Bounds3f box;
+        };
+        std::vector<Item> stack{{0, 0, root_box}};
+        std::size_t visited = 0;
+        while (!stack.empty()) {
+            const Item it = stack.back();
+            stack.pop_back();
+            const std::string where = "node " + std::to_string(it.node) + ": ";
+            if (it.node >= nodes.size() || node_seen[it.node]) {
+                return where + "out of range or reached twice";
+            }
+            node_seen[it.node] = 1;
+            ++visited;
+            if (it.depth >= 64) {
+                return where + "depth " + std::to_string(it.depth + 1) + " > 64";
+            }
+            const PairNode& n = nodes[it.node];
+            for (int c = 0; c < 2; ++c) {
+                const Bounds3f box = n.child_bounds(c);
+                if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z) ||
+                    !it.box.contains(box)) {
+                    return where + "child box empty, NaN or outside its parent";
+                }
+                if (n.count[c] > 0) {
+                    if (std::string e = use_leaf(n.child[c], n.count[c]); !e.empty()) {
+                        return where + e;
+                    }
+                } else {
+                    stack.push_back({n.child[c], it.depth + 1, box});
+                }
+            }
+        }
+        if (visited != nodes.size()) {
+            return std::to_string(nodes.size() - visited) + " nodes unreachable";
+        }
+    }
+    if (std::find(slot_used.begin(), slot_used.end(), 0) != slot_used.end()) {
+        return "a prim_ids slot lies in no leaf";
+    }
+    return {};
+}
+
+}  // namespace rtlab

@@ -1,0 +1,225 @@
+#pragma once
+// Binary BVH with both children's boxes stored in their parent (a 64-byte node, SoA per axis as
+// tinybvh's BVH_SoA and Embree's BVH4 node keep them), converted from any built Bvh. Traversal
+// tests both boxes with one SSE slab test, descends into the nearer hit child and pushes the
+// farther only when it is hit, with its entry distance, so a closest-hit ray skips it on pop once
+// a nearer hit is found; any-hit stops at the first blocker. The robust mode widens distances
+// exactly as clip_slabs<true> (intersect/box/slabs.h; Ize 2013), and NaN distances (origin on a
+// face plane, zero direction) leave the interval unchanged as there. Cost per ray: O(log N) nodes
+// for well-built trees; one box test per child, as Bvh.
+
+#include "accel/accel.h"
+#include "accel/bvh/bvh.h"
+#include "intersect/box/slabs.h"
+
+#include <cassert>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace rtlab {
+
+/// An inner node with its two children's boxes: x = (lo0, lo1, hi0, hi1) of child 0 and 1, the
+/// same for y and z; a child is an inner node (count 0, child = node index) or a leaf (count > 0,
+/// child = first slot in prim_ids).
+struct alignas(64) PairNode {
+    float x[4];
+    float y[4];
+    float z[4];
+    std::uint32_t child[2];
+    std::uint32_t count[2];
+
+    /// Child c's box.
+    Bounds3f child_bounds(int c) const {
+        return {{x[c], y[c], z[c]}, {x[2 + c], y[2 + c], z[2 + c]}};
+    }
+    friend bool operator==(const PairNode&, const PairNode&) = default;
+};
+
+static_assert(sizeof(PairNode) == 64, "PairNode fills one cache line");
+
+/// A binary BVH of PairNodes; leaves and primitive order as the source Bvh.
+struct PairBvh {
+    std::vector<PairNode> nodes;           ///< inner nodes; nodes[0] is the root when it is inner
+    std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
+    Bounds3f root_box;                     ///< the root's box (empty when no box was usable)
+    std::uint32_t root_child = 0;          ///< root: 0 (inner) or its first slot (leaf)
+    std::uint32_t root_count = 0;          ///< root: 0 (inner) or its primitive count (leaf)
+    std::uint32_t prim_count = 0;          ///< number of input boxes
+    std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
+    std::uint32_t max_leaf_size = 0;       ///< the source's leaf size bound
+    double sah_cost = 0;                   ///< the source Bvh's SAH cost (same tree)
+
+    /// The same tree as b, in pair nodes.
+    static PairBvh convert(const Bvh& b);
+
+    /// Closest hit: offers hit_fn every primitive in a leaf whose box the shrinking window meets,
+    /// nearer child first. Invalid rays return false before any node.
+    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
+    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return traverse<false, IsRobust>(ray, hit_fn, stats);
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return traverse<true, IsRobust>(ray, hit_fn, stats);
+    }
+
+    /// The root box.
+    Bounds3f bounds() const { return root_box; }
+
+    /// Sizes (nodes: pair nodes; bytes: nodes and ids), depth and the source's SAH cost.
+    AccelInfo info() const;
+
+    /// Empty when every invariant holds (each usable primitive in exactly one leaf, children
+    /// inside their parent's box, leaves of at most max_leaf_size, depth <= 64, every node
+    /// reached once); else the first violation.
+    std::string validate() const;
+
+    friend bool operator==(const PairBvh&, const PairBvh&) = default;
+
+private:
+    struct Entry {
+        std::uint32_t child;
+        std::uint32_t count;
+        float t;  ///< entry distance of its box
+    };
+
+    /// Both children's boxes against the window [tmin, tmax]: bit c of the result is set when
+    /// child c is hit, tn[c] receives its entry distance.
+    template <bool IsRobust>
+    static int test(
+        const PairNode& n, const SlabRay<float>& sr, float tmin, float tmax, float tn[2]);
+
+    template <bool IsAnyHit, bool IsRobust, class R, class F, class S>
+    bool traverse(R& ray, F& hit_fn, S& stats) const {
+        if (!is_valid(ray)) {
+            return false;
+        }
+        stats.count_ray();
+        if (prim_ids.empty()) {
+            return false;
+        }
+        const SlabRay<float> sr(ray);
+        float t0 = ray.tmin, t1 = ray.tmax;
+        stats.count_node();
+        if (!clip_slabs<IsRobust>(root_box.lo, root_box.hi, sr, t0, t1)) {
+            return false;
+        }
+        Entry stack[64];
+        std::uint32_t size = 0;
+        Entry cur{root_child, root_count, t0};
+        bool hit = false;
+        for (;;) {
+            if (cur.count == 0) {
+                const PairNode& n = nodes[cur.child];
+                stats.count_node();
+                stats.count_node();
+                float tn[2];
+                const int mask = test<IsRobust>(n, sr, ray.tmin, ray.tmax, tn);
+                if (mask == 3) {
+                    const int near = tn[1] < tn[0] ? 1 : 0;
+                    assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
+                    stack[size++] = {n.child[1 - near], n.count[1 - near], tn[1 - near]};
+                    cur = {n.child[near], n.count[near], tn[near]};
+                    continue;
+                }
+                if (mask != 0) {
+                    const int c = mask >> 1;
+                    cur = {n.child[c], n.count[c], tn[c]};
+                    continue;
+                }
+            } else {
+                const std::uint32_t end = cur.child + cur.count;
+                for (std::uint32_t i = cur.child; i < end; ++i) {
+                    stats.count_prim();
+                    if constexpr (IsAnyHit) {
+                        if (hit_fn(prim_ids[i], ray)) {
+                            return true;
+                        }
+                    } else {
+                        hit = hit_fn(prim_ids[i], ray) || hit;
+                    }
+                }
+            }
+            // Pop; a closest-hit ray skips entries whose box starts beyond its current window.
+            for (;;) {
+                if (size == 0) {
+                    return hit;
+                }
+                cur = stack[--size];
+                if (IsAnyHit || !(cur.t > ray.tmax)) {
+                    break;
+                }
+            }
+        }
+    }
+};
+
+#if defined(__SSE2__)
+template <bool IsRobust>
+inline int PairBvh::test(
+    const PairNode& n, const SlabRay<float>& sr, float tmin, float tmax, float tn[2]) {
+    // Lanes hold (lo0, lo1, hi0, hi1) distances; swapping the halves gives (hi, lo), and the
+    // ray's direction sign per axis picks which half is the near one for both children at once.
+    const auto select = [](__m128 mask, __m128 a, __m128 b) {
+#if defined(__SSE4_1__)
+        return _mm_blendv_ps(b, a, mask);
+#else
+        return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+#endif
+    };
+    const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    const __m128 none = _mm_setzero_ps();
+    __m128 t0 = _mm_set1_ps(tmin);
+    __m128 t1 = _mm_set1_ps(tmax);
+    const float* planes[3] = {n.x, n.y, n.z};
+    for (int a = 0; a < 3; ++a) {
+        const __m128 t = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(planes[a]), _mm_set1_ps(sr.org[a])),
+                                    _mm_set1_ps(sr.inv_dir[a]));
+        const __m128 swapped = _mm_shuffle_ps(t, t, _MM_SHUFFLE(1, 0, 3, 2));
+        const __m128 neg = sr.neg[a] ? all : none;
+        __m128 near_t = select(neg, swapped, t);
+        __m128 far_t = select(neg, t, swapped);
+        if constexpr (IsRobust) {
+            // As clip_slabs<true>: widen both outward by 2*gamma(3), sign-aware.
+            const __m128 grow = _mm_set1_ps(1.0f + 2.0f * gamma_bound<float>(3));
+            const __m128 shrink = _mm_set1_ps(1.0f - 2.0f * gamma_bound<float>(3));
+            near_t = _mm_mul_ps(near_t, select(_mm_cmpgt_ps(near_t, none), shrink, grow));
+            far_t = _mm_mul_ps(far_t, select(_mm_cmpgt_ps(far_t, none), grow, shrink));
+        }
+        // max_ps(a, b) is a > b ? a : b, so a NaN distance keeps the interval (clip_slabs).
+        t0 = _mm_max_ps(near_t, t0);
+        t1 = _mm_min_ps(far_t, t1);
+    }
+    alignas(16) float out[4];
+    _mm_store_ps(out, t0);
+    tn[0] = out[0];
+    tn[1] = out[1];
+    return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & 3;
+}
+#else
+template <bool IsRobust>
+inline int PairBvh::test(
+    const PairNode& n, const SlabRay<float>& sr, float tmin, float tmax, float tn[2]) {
+    int mask = 0;
+    for (int c = 0; c < 2; ++c) {
+        const Bounds3f b = n.child_bounds(c);
+        float t0 = tmin, t1 = tmax;
+        if (clip_slabs<IsRobust>(b.lo, b.hi, sr, t0, t1)) {
+            mask |= 1 << c;
+            tn[c] = t0;
+        }
+    }
+    return mask;
+}
+#endif
+
+static_assert(Accel<PairBvh>);
+
+}  // namespace rtlab

@@ -1,0 +1,214 @@
+// Issue 12's target measurements (`rtlab_bench --suite issue12`; Embree's side in
+// embree_issue12.cpp), every row on the same primitives and rays:
+//   issue12/trace/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:<k>
+//       every BVH-family registry row (name starting with "bvh": binary and wide layouts, default
+//       parameters; --accel narrows the list) through SceneTracer with TBB limited to k threads.
+//       <methods> is "default" (each family's default method) or "watertight" (the watertight
+//       triangle test, with robust traversal: the issue's watertight row). Counters: rays/s,
+//       nodes/ray and prims/ray (a separate counting pass), bytes/prim (structure) and
+//       leaf_bytes/prim (the method's prepared primitives and 4-byte id maps), build_ms, prims.
+//   issue12/build/<spec>/<scene>/threads:<k>  build time of the row from the scene's triangle
+//       bounds, TBB limited to k threads; build_ms is the median of the timed builds.
+// Scenes: flake_meshfloor4 (SF 4 tessellated uv:16x8 with the floor as two triangles, 1.65M
+// triangles), flake_spheres4 and flake_spheres5 (analytic, no floor); --quick uses sizes 2, 2, 3.
+// Rays: primary, shadow (any hit), diffuse. Threads 1, and 2 for the scaling rows on the mesh.
+#include "accel/any_accel.h"
+#include "bench/benchmarks.h"
+#include "bench/trace_fixture.h"
+#include "intersect/sphere/methods.h"
+#include "intersect/triangle/methods.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <tbb/global_control.h>
+#include <tuple>
+#include <vector>
+
+namespace rtlab::bench {
+
+std::string issue12_mesh_scene() {
+    return quick_mode() ? "flake_meshfloor2" : "flake_meshfloor4";
+}
+
+std::vector<std::string> issue12_sphere_scenes() {
+    if (quick_mode()) {
+        return {"flake_spheres2", "flake_spheres3"};
+    }
+    return {"flake_spheres4", "flake_spheres5"};
+}
+
+benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b) {
+    // Five repetitions, reported as mean, median and spread (the report reads the medians).
+    b->Unit(benchmark::kMillisecond)->Repetitions(quick_mode() ? 2 : 5)->ReportAggregatesOnly(true);
+    return b->MinTime(quick_mode() ? 0.01 : 0.2);
+}
+
+}  // namespace rtlab::bench
+
+namespace {
+
+using namespace rtlab;
+using namespace rtlab::bench;
+
+constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
+
+/// Bytes of the leaf data the tracer keeps beside the structure for scene s: one Prepared
+/// record per primitive of the method in use, and a 4-byte global id each.
+double leaf_bytes(const Scene& s, bool watertight) {
+    using Tri = std::tuple_element_t<0, TriangleMethods<float>>;
+    using Sph = std::tuple_element_t<0, SphereMethods<float>>;
+    std::size_t tris = 0;
+    for (const MeshObject& m : s.meshes) {
+        tris += m.mesh.triangle_count();
+    }
+    const std::size_t tri_bytes =
+        watertight ? sizeof(Watertight<float>::Prepared) : sizeof(Tri::Prepared);
+    return static_cast<double>(tris * (tri_bytes + 4) +
+                               s.spheres.size() * (sizeof(Sph::Prepared) + 4));
+}
+
+/// The structures of the suite: the BVH-family rows of bench_specs().
+std::vector<std::string> layout_specs() {
+    std::vector<std::string> out;
+    for (const std::string& s : bench_specs()) {
+        if (s.starts_with("bvh")) {
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+
+struct TracerKey {
+    std::string scene;
+    std::string accel;
+    bool watertight = false;  ///< watertight triangle method and robust traversal
+    friend bool operator==(const TracerKey&, const TracerKey&) = default;
+};
+
+/// The tracer of the most recent key (benchmarks are registered grouped by key, so each tracer
+/// is built once; keeping one at a time bounds memory on the 1.65M-triangle flake).
+const SceneTracer& tracer(const TracerKey& key) {
+    static std::unique_ptr<SceneTracer> last;
+    static TracerKey last_key;
+    if (!last || !(last_key == key)) {
+        last.reset();
+        TraceSetup setup;
+        setup.accel = key.accel;
+        setup.robust = key.watertight;
+        if (key.watertight) {
+            setup.methods = {"watertight"};
+        }
+        last = std::make_unique<SceneTracer>(bench_scene(key.scene).scene, setup);
+        last_key = key;
+    }
+    return *last;
+}
+
+void bm_trace(benchmark::State& state, TracerKey key, RayKind kind, int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(threads));
+    const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
+    const SceneTracer& t = tracer(key);
+    std::vector<Hit> hits(rays.size());
+    std::vector<std::uint32_t> blockers(rays.size());
+    for (auto _ : state) {
+        if (kind == RayKind::shadow) {
+            t.occluded(rays, blockers);
+            benchmark::DoNotOptimize(blockers.data());
+        } else {
+            t.intersect(rays, hits);
+            benchmark::DoNotOptimize(hits.data());
+        }
+    }
+    TraversalStats st;
+    if (kind == RayKind::shadow) {
+        t.occluded(rays, blockers, &st);
+    } else {
+        t.intersect(rays, hits, &st);
+    }
+    const auto n = static_cast<double>(rays.size());
+    const auto prims = static_cast<double>(t.primitive_count());
+    double bytes = 0;
+    for (const AccelInfo& i : t.infos()) {
+        bytes += static_cast<double>(i.bytes);
+    }
+    state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["nodes/ray"] = static_cast<double>(st.nodes) / n;
+    state.counters["prims/ray"] = static_cast<double>(st.prims) / n;
+    state.counters["build_ms"] = t.build_ms();
+    state.counters["prims"] = prims;
+    state.counters["bytes/prim"] = bytes / prims;
+    state.counters["leaf_bytes/prim"] =
+        leaf_bytes(bench_scene(key.scene).scene, key.watertight) / prims;
+}
+
+void bm_build(benchmark::State& state, std::string accel, std::string scene, int threads) {
+    const std::vector<Bounds3f> bounds = triangle_bounds(bench_scene(scene).scene);
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(threads));
+    std::vector<double> ms;
+    AccelInfo info;
+    for (auto _ : state) {
+        const auto t0 = std::chrono::steady_clock::now();
+        AnyAccel a = build_accel(accel, BuildInput{bounds, {}});
+        const auto t1 = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(t1 - t0).count();
+        state.SetIterationTime(s);
+        ms.push_back(1e3 * s);
+        info = accel_info(a);
+        benchmark::DoNotOptimize(a);
+    }
+    std::sort(ms.begin(), ms.end());
+    state.counters["prims"] = static_cast<double>(bounds.size());
+    state.counters["build_ms"] = ms[ms.size() / 2];
+    state.counters["bytes/prim"] = info.bytes_per_prim;
+    state.counters["sah_cost"] = info.sah_cost;
+}
+
+}  // namespace
+
+void rtlab::bench::register_issue12_benchmarks() {
+    const std::string mesh = issue12_mesh_scene();
+    std::vector<std::string> scenes{mesh};
+    for (const std::string& s : issue12_sphere_scenes()) {
+        scenes.push_back(s);
+    }
+    for (const std::string& spec : layout_specs()) {
+        // Grouped by tracer: each (scene, structure, methods) is built once.
+        for (const std::string& scene : scenes) {
+            for (const bool wt : {false, true}) {
+                if (wt && scene != mesh) {
+                    continue;  // the watertight row is about triangles
+                }
+                for (RayKind k : issue_kinds) {
+                    for (int threads : {1, 2}) {
+                        if (threads == 2 && (wt || scene != mesh)) {
+                            continue;  // scaling rows: the mesh, default methods
+                        }
+                        const std::string name = "issue12/trace/" + spec +
+                                                 (wt ? "/watertight/robust/" : "/default/plain/") +
+                                                 scene + "/" + std::string(to_string(k)) +
+                                                 "/threads:" + std::to_string(threads);
+                        issue12_timing(benchmark::RegisterBenchmark(name.c_str(), bm_trace,
+                                                                    TracerKey{scene, spec, wt}, k,
+                                                                    threads)
+                                           ->UseRealTime());
+                    }
+                }
+            }
+        }
+        for (int threads : {1, 2}) {
+            const std::string name =
+                "issue12/build/" + spec + "/" + mesh + "/threads:" + std::to_string(threads);
+            benchmark::RegisterBenchmark(name.c_str(), bm_build, spec, mesh, threads)
+                ->Unit(benchmark::kMillisecond)
+                ->UseManualTime()
+                ->Iterations(quick_mode() ? 1 : 5);
+        }
+    }
+    register_issue12_embree_benchmarks();
+}

@@ -1,0 +1,231 @@
+"""Issue 12's target table from an `rtlab_bench --suite issue12` run (bench/issue12_bench.cpp,
+bench/embree_issue12.cpp); used by report.py --suite issue12.
+
+Row names: issue12/trace/<accel>/<default|watertight>/<plain|robust>/<scene>/<kind>/threads:<k>
+and issue12/build/<accel>/<scene>/threads:<k>, where <accel> is a canonical registry spec or
+embree:<quality>. "Best rtlab layout" is the best over every registry spec in the run (all BVH
+layouts, binary and wide, whichever are registered); "binary" are the specs named bvh:...; a
+structure family is the spec name before its first ':' or ','.
+"""
+import re
+
+from report_common import fmt, num, to_ms
+
+BEGIN = "<!-- issue12:begin -->"
+END = "<!-- issue12:end -->"
+KINDS = ["primary", "shadow", "diffuse"]
+TRACE = re.compile(r"issue12/trace/(?P<accel>[^/]+)/(?P<methods>[^/]+)/(?P<mode>[^/]+)/"
+                   r"(?P<scene>[^/]+)/(?P<kind>[^/]+)/threads:(?P<threads>\d+)$")
+BUILD = re.compile(r"issue12/build/(?P<accel>[^/]+)/(?P<scene>[^/]+)/threads:(?P<threads>\d+)$")
+
+
+def family(accel):
+    return re.split(r"[:,]", accel, maxsplit=1)[0]
+
+
+def short(accel):
+    """The spec without parameters at their defaults is too long for a table: name + from=."""
+    parts = accel.split(",")
+    keep = [p for p in parts[1:] if p.startswith("from=")]
+    return ",".join([parts[0]] + keep)
+
+
+class Issue12:
+    def __init__(self, rows, cpu=False):
+        # cpu: one-thread rows use the measuring thread's CPU time instead of wall time (with
+        # one thread all the work runs on it), the fair basis on a machine shared with other
+        # jobs; two-thread rows always use wall time.
+        self.cpu = cpu
+        self.trace = {}  # (accel, methods, mode, scene, kind, threads) -> rays/s
+        self.counts = {}  # same key -> row
+        self.build = {}  # (accel, scene, threads) -> build_ms
+        self.build_rows = {}
+        self.wall, self.build_wall = {}, {}  # wall-time figures, for the 2 / 1 thread ratios
+        for name, row in rows.items():
+            m = TRACE.match(name)
+            if m:
+                key = (m["accel"], m["methods"], m["mode"], m["scene"], m["kind"],
+                       int(m["threads"]))
+                rate = num(row, "rays/s")
+                self.wall[key] = rate
+                real, cpu_t = num(row, "real_time"), num(row, "cpu_time")
+                if cpu and key[5] == 1 and rate and real and cpu_t:
+                    rate = rate * real / cpu_t
+                self.trace[key] = rate
+                self.counts[key] = row
+                continue
+            m = BUILD.match(name)
+            if m:
+                key = (m["accel"], m["scene"], int(m["threads"]))
+                ms = num(row, "build_ms")
+                self.build_wall[key] = ms
+                if cpu and key[2] == 1 and num(row, "cpu_time"):
+                    ms = to_ms(num(row, "cpu_time"), row.get("time_unit", "ms"))
+                self.build[key] = ms
+                self.build_rows[key] = row
+        scenes = sorted({k[3] for k in self.trace})
+        self.mesh = next((s for s in scenes if s.startswith("flake_meshfloor")), None)
+        self.spheres = [s for s in scenes if s.startswith("flake_spheres")]
+        self.ours = sorted({k[0] for k in self.trace if not k[0].startswith("embree:")})
+
+    def rate(self, accel, scene, kind, threads=1, methods="default", mode="plain"):
+        return self.trace.get((accel, methods, mode, scene, kind, threads))
+
+    def best(self, scene, kind, pred=lambda a: True):
+        cands = [(self.rate(a, scene, kind), a) for a in self.ours if pred(a)]
+        cands = [(r, a) for r, a in cands if r]
+        return max(cands) if cands else (None, None)
+
+    @staticmethod
+    def ratio(a, b):
+        return a / b if a and b else None
+
+    @staticmethod
+    def status(r, target, higher=True):
+        if r is None:
+            return "not measured"
+        ok = r >= float(target) if higher else r <= float(target)
+        return "met" if ok else "**below target**"
+
+    def row(self, measure, target, r, higher=True, note=""):
+        op = ">=" if higher else "<="
+        return (f"| {measure} | {op} {target}x | {fmt(r)}x | "
+                f"{self.status(r, target, higher)}{' (' + note + ')' if note else ''} |")
+
+    def table(self):
+        out = ["| measure | target | measured ratio | status |", "|---|---|---|---|"]
+        emb = "embree:medium"
+        for kind in KINDS:
+            r, a = self.best(self.mesh, kind)
+            out.append(self.row(f"best rtlab layout / Embree medium, triangles, {kind}", "1.0",
+                                self.ratio(r, self.rate(emb, self.mesh, kind)),
+                                note=f"{short(a)}" if a else ""))
+        for kind in KINDS:
+            r, a = self.best(self.mesh, kind)
+            wt = self.rate(a, self.mesh, kind, methods="watertight", mode="robust") if a else None
+            out.append(self.row(f"watertight + robust on the fastest layout / Embree medium, "
+                                f"{kind}", "0.8", self.ratio(wt, self.rate(emb, self.mesh, kind)),
+                                note=f"{short(a)}; leaks: docs/stability.md" if a else ""))
+        for kind in KINDS:
+            r, a = self.best(self.mesh, kind, lambda s: s.startswith("bvh:"))
+            out.append(self.row(f"best binary BVH / Embree medium, {kind}", "0.5",
+                                self.ratio(r, self.rate(emb, self.mesh, kind)),
+                                note=short(a) if a else ""))
+        for scene in self.spheres:
+            for kind in KINDS:
+                r, a = self.best(scene, kind)
+                out.append(self.row(f"analytic spheres {scene} / Embree spheres, {kind}", "1.5",
+                                    self.ratio(r, self.rate(emb, scene, kind)),
+                                    note=short(a) if a else ""))
+        pb = next((a for a in self.ours if a.startswith("bvh:pbinned")), None)
+        if pb:
+            out.append(self.row("binned SAH build (bvh:pbinned), 1 thread / Embree medium build, "
+                                "same triangles", "1.0",
+                                self.ratio(self.build.get((pb, self.mesh, 1)),
+                                           self.build.get((emb, self.mesh, 1))), higher=False))
+        for a in self.ours + ["embree:medium", "embree:high"]:
+            r = self.ratio(self.build_wall.get((a, self.mesh, 1)),
+                           self.build_wall.get((a, self.mesh, 2)))
+            if r is not None:
+                out.append(self.row(f"build {short(a)}, 2 threads / 1 thread", "1.8", r))
+        for kind in KINDS:
+            r, a = self.best(self.mesh, kind)
+            w = lambda acc, t: self.wall.get((acc, "default", "plain", self.mesh, kind, t))
+            if a:
+                out.append(self.row(f"trace {short(a)} {kind}, 2 threads / 1 thread (wall)", "1.8",
+                                    self.ratio(w(a, 2), w(a, 1))))
+            out.append(self.row(f"trace embree:medium {kind}, 2 threads / 1 thread (wall)", "1.8",
+                                self.ratio(w(emb, 2), w(emb, 1))))
+        return out
+
+    def detail(self):
+        out = [f"Mrays/s, one thread, {self.mesh} (triangles); nodes and primitive tests per ray "
+               "from the counting pass (Embree reports none):", "",
+               "| structure | " + " | ".join(KINDS) + " | nodes/ray (primary) | prims/ray "
+               "(primary) | watertight+robust primary |", "|---|---|---|---|---|---|---|"]
+        for a in self.ours + ["embree:medium", "embree:high"]:
+            cells = [fmt((self.rate(a, self.mesh, k) or 0) / 1e6) for k in KINDS]
+            row = self.counts.get((a, "default", "plain", self.mesh, "primary", 1), {})
+            wt = self.rate(a, self.mesh, "primary", methods="watertight", mode="robust")
+            out.append(f"| {short(a)} | " + " | ".join(cells) +
+                       f" | {fmt(num(row, 'nodes/ray'))} | {fmt(num(row, 'prims/ray'))} | "
+                       f"{fmt(wt / 1e6) if wt else '-'} |")
+        out.append("")
+        for scene in self.spheres:
+            out += [f"Mrays/s, one thread, {scene} (analytic spheres):", "",
+                    "| structure | " + " | ".join(KINDS) + " |", "|---|---|---|---|"]
+            for a in self.ours + ["embree:medium", "embree:high"]:
+                cells = [fmt((self.rate(a, scene, k) or 0) / 1e6) for k in KINDS]
+                out.append(f"| {short(a)} | " + " | ".join(cells) + " |")
+            out.append("")
+        out += [f"Memory per triangle on {self.mesh}: structure (nodes and index lists) plus leaf "
+                "data (the method's prepared triangles and the 4-byte id map the tracer keeps); "
+                "Embree: every byte its memory monitor saw for the scene (its vertex and index "
+                "copies and the BVH with its leaf triangles). Build: median of 5 builds from "
+                "the triangle boxes (ours) or of rtcCommitScene (Embree).", "",
+                "| structure | structure B/tri | leaf data B/tri | total B/tri | build ms, 1 thread "
+                "| build ms, 2 threads |", "|---|---|---|---|---|---|"]
+        for a in self.ours + ["embree:medium", "embree:high"]:
+            row = self.counts.get((a, "default", "plain", self.mesh, "primary", 1), {})
+            s, leaf = num(row, "bytes/prim"), num(row, "leaf_bytes/prim")
+            total = (s or 0) + (leaf or 0) if s is not None else None
+            out.append(f"| {short(a)} | {fmt(s) if not a.startswith('embree') else '-'} | "
+                       f"{fmt(leaf) if leaf is not None else '-'} | {fmt(total)} | "
+                       f"{fmt(self.build.get((a, self.mesh, 1)))} | "
+                       f"{fmt(self.build.get((a, self.mesh, 2)))} |")
+        out.append("")
+        return out
+
+    def headline(self):
+        """Each structure family's best layout against Embree medium (mesh scene, 1 thread)."""
+        out = []
+        for fam in sorted({family(a) for a in self.ours}):
+            for kind in KINDS:
+                r, a = self.best(self.mesh, kind, lambda s, f=fam: family(s) == f)
+                e = self.rate("embree:medium", self.mesh, kind)
+                out.append(f"{fam:8s} {kind:8s} best {short(a) if a else '-':28s} "
+                           f"{fmt((r or 0) / 1e6)} Mrays/s = {fmt(self.ratio(r, e))}x Embree "
+                           f"medium ({fmt((e or 0) / 1e6)} Mrays/s)")
+        return out
+
+
+def section(rows, prov_line, cpu=False):
+    rep = Issue12(rows, cpu)
+    if rep.mesh is None:
+        return [BEGIN, "_No issue12 rows in this run._", END]
+    lines = [BEGIN,
+             "<!-- Generated by bench/report.py --suite issue12: edits between these markers "
+             "are lost. -->", "", "## Issue 12 target table (generated)", "", prov_line, "",
+             "One thread unless stated; medians of 5 repetitions; all rows of one run on the same "
+             "primitives and rays (SPD-view primary rays, shadow rays to a light with any hit, one "
+             "cosine diffuse bounce). Embree 3 with `rtcIntersect1`/`rtcOccluded1`. The best "
+             "rtlab layout is the best registry row in the run for that scene and ray kind. "
+             + ("Basis: CPU time of the measuring thread for one-thread rows (`--cpu`: the "
+                "machine was shared, and with one thread all work runs on that thread), wall "
+                "time for two-thread rows (which a shared machine distorts)." if rep.cpu else
+                "Basis: wall time."), ""]
+    lines += rep.table()
+    lines += ["", "### Per structure", ""]
+    lines += rep.detail()
+    lines += ["Headline (also printed by `scripts/demo`):", "", "```"] + rep.headline() + ["```",
+                                                                                           "", END]
+    return lines
+
+
+def synthetic_rows():
+    rows = {}
+    specs = ["bvh:pbinned,max_leaf=4,bins=16,ct=1,ci=1,threads=0",
+             "bvh:pair,from=pbinned,max_leaf=4,bins=16,ct=1,ci=1,threads=0", "embree:medium",
+             "embree:high"]
+    for i, a in enumerate(specs):
+        for scene in ("flake_meshfloor2", "flake_spheres2"):
+            for k in KINDS:
+                for t in (1, 2):
+                    rows[f"issue12/trace/{a}/default/plain/{scene}/{k}/threads:{t}"] = {
+                        "rays/s": 1e6 * (i + 1) * t, "nodes/ray": 30.0, "prims/ray": 4.0,
+                        "bytes/prim": 40.0, "leaf_bytes/prim": 40.0}
+                rows[f"issue12/trace/{a}/watertight/robust/{scene}/{k}/threads:1"] = {
+                    "rays/s": 0.9e6 * (i + 1)}
+        for t in (1, 2):
+            rows[f"issue12/build/{a}/flake_meshfloor2/threads:{t}"] = {"build_ms": 100.0 / t}
+    return rows
