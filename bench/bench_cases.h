@@ -62,5 +62,10 @@ template <class T>
 TangleCube<T> to_scalar(const TangleCube<float>& s) {
     return {Vec3<T>(s.center), static_cast<T>(s.scale)};
 }
+template <class T>
+Cone<T> to_scalar(const Cone<float>& c) {
+    return {Vec3<T>(c.base), static_cast<T>(c.base_radius), Vec3<T>(c.apex),
+            static_cast<T>(c.apex_radius), c.caps};
+}
 
 }  // namespace rtlab::bench

@@ -7,6 +7,7 @@
 #include "crosscheck/accumulator.h"
 #include "crosscheck/ray_sets.h"
 #include "intersect/box/methods.h"
+#include "intersect/cone/methods.h"
 #include "intersect/implicit/methods.h"
 #include "intersect/polygon/methods.h"
 #include "intersect/sphere/methods.h"
@@ -219,4 +220,8 @@ void rtlab::bench::register_intersect_benchmarks() {
             for_each_implicit_method<TangleCube, typename decltype(tag)::type>(f);
         },
         false);
+    register_kind<Cone<float>, xcheck::cone_bench_cases>(
+        "cone",
+        [](auto tag, const auto& f) { for_each_cone_method<typename decltype(tag)::type>(f); },
+        true);
 }

@@ -17,5 +17,7 @@ std::vector<std::string> sphere_methods();
 std::vector<Row> check_spheres(const Options& opt);
 std::vector<std::string> implicit_methods();
 std::vector<Row> check_implicits(const Options& opt);
+std::vector<std::string> cone_methods();
+std::vector<Row> check_cones(const Options& opt);
 
 }  // namespace rtlab::xcheck

@@ -4,6 +4,7 @@
 #include "crosscheck/exact.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <mpfr.h>
 #include <stdexcept>
@@ -154,7 +155,126 @@ int root_minus(const Q& a, const Q& b, const Q& disc, int s, const Q& x) {
     return sgn(diff);
 }
 
+/// An exact candidate t: a rational, or the quadric root (-b + s sqrt(disc)) / a (a > 0).
+struct Candidate {
+    bool valid = false;
+    bool is_root = false;
+    Q value;  ///< the rational (when !is_root)
+    int s = 0;
+};
+
+/// Sign of candidate - x.
+int minus(const Candidate& c, const Q& a, const Q& b, const Q& disc, const Q& x) {
+    return c.is_root ? root_minus(a, b, disc, c.s, x) : sgn(c.value - x);
+}
+
 }  // namespace
+
+ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray) {
+    const auto q3 = [](const Vec3d& v) { return std::array<Q, 3>{Q(v.x), Q(v.y), Q(v.z)}; };
+    const auto dt = [](const std::array<Q, 3>& x, const std::array<Q, 3>& y) {
+        return Q(x[0] * y[0] + x[1] * y[1] + x[2] * y[2]);
+    };
+    const std::array<Q, 3> base = q3(cone.base), apex = q3(cone.apex), o = q3(ray.org),
+                           d = q3(ray.dir);
+    std::array<Q, 3> e, w0, wa;
+    for (std::size_t k = 0; k < 3; ++k) {
+        e[k] = apex[k] - base[k];
+        w0[k] = o[k] - base[k];
+        wa[k] = o[k] - apex[k];
+    }
+    const Q r0(cone.base_radius), r1(cone.apex_radius);
+    const Q big_e = dt(e, e);
+    const Q s0 = dt(w0, e), sd = dt(d, e);  // w.e = s0 + t sd
+    const Q l0 = r0 * big_e + (r1 - r0) * s0, ld = (r1 - r0) * sd;
+    const Q dd = dt(d, d);
+    // g(t) = a t^2 + 2 b t + c; the side is g = 0 with 0 <= s0 + t sd <= E.
+    Q a = big_e * big_e * dd - big_e * sd * sd - ld * ld;
+    Q b = big_e * big_e * dt(w0, d) - big_e * s0 * sd - l0 * ld;
+    Q c = big_e * big_e * dt(w0, w0) - big_e * s0 * s0 - l0 * l0;
+    if (a < 0) {
+        a = -a;
+        b = -b;
+        c = -c;
+    }
+    // The t interval [lo, hi] of the window and the slab 0 <= w.e <= E (hi absent when +inf).
+    Q lo(ray.tmin);
+    bool has_hi = std::isfinite(ray.tmax);
+    Q hi(has_hi ? ray.tmax : 0.0);
+    bool slab_empty = false;
+    if (sd == 0) {
+        slab_empty = s0 < 0 || s0 > big_e;
+    } else {
+        Q ta = -s0 / sd, tb = (big_e - s0) / sd;
+        if (ta > tb) {
+            std::swap(ta, tb);
+        }
+        lo = std::max(lo, ta);
+        hi = has_hi ? std::min(hi, tb) : tb;
+        has_hi = true;
+    }
+    const auto in_window = [&](const Candidate& cand, const Q& disc) {
+        return minus(cand, a, b, disc, lo) >= 0 && (!has_hi || minus(cand, a, b, disc, hi) <= 0);
+    };
+    Candidate side;
+    Q disc = 0;
+    if (!slab_empty && (!has_hi || lo <= hi)) {
+        if (a == 0) {
+            if (b != 0) {
+                side = {true, false, -c / (2 * b), 0};
+                side.valid = in_window(side, disc);
+            } else if (c == 0) {
+                side = {true, false, lo, 0};  // the line lies in the surface: first point on it
+            }
+        } else {
+            disc = b * b - a * c;
+            if (disc >= 0) {
+                for (int sgn_root : {-1, +1}) {
+                    const Candidate cand{true, true, Q(0), sgn_root};
+                    if (in_window(cand, disc)) {
+                        side = cand;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    // Caps: rational t on the planes w.e = 0 and w.e = E, inside the disk, inside the window.
+    Candidate cap;
+    const Q tmin(ray.tmin);
+    const bool finite_max = std::isfinite(ray.tmax);
+    const Q tmax(finite_max ? ray.tmax : 0.0);
+    const auto try_cap = [&](const Q& t, const std::array<Q, 3>& from, const Q& radius) {
+        if (t < tmin || (finite_max && t > tmax)) {
+            return;
+        }
+        std::array<Q, 3> p;
+        for (std::size_t k = 0; k < 3; ++k) {
+            p[k] = from[k] + t * d[k];
+        }
+        if (dt(p, p) <= radius * radius && (!cap.valid || t < cap.value)) {
+            cap = {true, false, t, 0};
+        }
+    };
+    if (sd != 0) {
+        if (has_cap(cone.caps, ConeCaps::base)) {
+            try_cap(-s0 / sd, w0, r0);
+        }
+        if (has_cap(cone.caps, ConeCaps::apex)) {
+            try_cap((big_e - s0) / sd, wa, r1);
+        }
+    }
+    const auto value = [&](const Candidate& cand) {
+        return cand.is_root ? mpfr_root(a, b, disc, cand.s) : cand.value.get_d();
+    };
+    if (side.valid && (!cap.valid || minus(side, a, b, disc, cap.value) <= 0)) {
+        return {true, value(side)};
+    }
+    if (cap.valid) {
+        return {true, value(cap)};
+    }
+    return {};
+}
 
 bool exact_sphere_roots(
     const Vec3d& center, double radius, const Rayd& ray, double& t0, double& t1) {

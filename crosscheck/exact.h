@@ -4,6 +4,7 @@
 // (GMP) and evaluated with MPFR where a square root or an irrational root is needed. Inputs are
 // doubles, so float inputs (exactly representable as doubles) give the answer for the float shape.
 
+#include "intersect/cone/cone.h"
 #include "intersect/implicit/torus.h"
 #include "intersect/ray.h"
 #include "intersect/triangle/triangle.h"
@@ -30,6 +31,13 @@ ExactRoot exact_sphere_root(const Vec3d& center, double radius, const Rayd& ray)
 /// false when the line misses (negative discriminant). dir must be non-zero.
 bool exact_sphere_roots(
     const Vec3d& center, double radius, const Rayd& ray, double& t0, double& t1);
+
+/// Exact cone answer: the smallest t in [tmin, tmax] (tmax may be +inf) on the lateral surface
+/// (the quadric E^2 |w|^2 - E (w.e)^2 = (r0 E + (r1 - r0) w.e)^2 with w = p - base, e = apex -
+/// base, E = e.e, restricted to 0 <= w.e <= E) or on a requested cap disk, decided in rationals;
+/// a quadric root from a 256-bit MPFR square root. A ray lying in the surface (a generator) hits
+/// at its first point on the cone. dir must be non-zero, base != apex.
+ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray);
 
 /// Exact ray-triangle answer (two-sided, edges inclusive) by Cramer's rule in rationals.
 struct ExactTriangleHit {

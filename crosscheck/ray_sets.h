@@ -8,6 +8,7 @@
 #include "crosscheck/driver.h"
 #include "intersect/bounds.h"
 #include "intersect/box/obb.h"
+#include "intersect/cone/cone.h"
 #include "intersect/implicit/tangle_cube.h"
 #include "intersect/implicit/torus.h"
 #include "intersect/polygon/polygon.h"
@@ -66,5 +67,8 @@ BenchCases<Sphere<float>> sphere_bench_cases(std::size_t n, std::uint64_t seed);
 BenchCases<Torus<float>> torus_bench_cases(std::size_t n, std::uint64_t seed);
 /// As torus_bench_cases, for tangle cubes.
 BenchCases<TangleCube<float>> tangle_bench_cases(std::size_t n, std::uint64_t seed);
+/// The cone check's cases (one cone per ray); sets random, edge (the check's rim set), grazing,
+/// far (far_small); n rays each. The truth is exact_cone_root.
+BenchCases<Cone<float>> cone_bench_cases(std::size_t n, std::uint64_t seed);
 
 }  // namespace rtlab::xcheck

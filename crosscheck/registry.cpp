@@ -6,13 +6,14 @@
 namespace rtlab::xcheck {
 
 namespace {
-const std::array<PrimCheck, 6> checks{{
+const std::array<PrimCheck, 7> checks{{
     {"triangle", triangle_methods, check_triangles},
     {"polygon", polygon_methods, check_polygons},
     {"aabb", aabb_methods, check_aabbs},
     {"obb", obb_methods, check_obbs},
     {"sphere", sphere_methods, check_spheres},
     {"implicit", implicit_methods, check_implicits},
+    {"cone", cone_methods, check_cones},
 }};
 }  // namespace
 

@@ -95,6 +95,10 @@ bool append_object(TriangleMesh& out, const O& o, const SphereTess& tess) {
         append_sphere(out, Vec3d(o.center), static_cast<double>(o.radius), tess);
     } else if constexpr (std::is_same_v<O, PolygonObject>) {
         append_polygon(out, o.vertices);
+    } else if constexpr (std::is_same_v<O, ConeObject>) {
+        append_cone(out, Vec3d(o.base), static_cast<double>(o.base_radius), Vec3d(o.apex),
+                    static_cast<double>(o.apex_radius), has_cap(o.caps, ConeCaps::base),
+                    has_cap(o.caps, ConeCaps::apex), tess.u);
     } else {
         return false;
     }

@@ -61,9 +61,10 @@ struct Generator {
 /// Generates by name; throws rtlab::Error listing the names when there is no such generator.
 [[nodiscard]] Scene generate(std::string_view name, const GenOptions& o);
 
-/// One mesh of everything in s: meshes copied, spheres tessellated with `tess`, polygons fanned
-/// from their vertex average (correct for polygons star-shaped about it, as all generated ones
-/// are). Throws rtlab::Error for boxes, oriented boxes and implicit surfaces.
+/// One mesh of everything in s: meshes copied, spheres tessellated with `tess`, cones with tess.u
+/// segments around (append_cone), polygons fanned from their vertex average (correct for
+/// polygons star-shaped about it, as all generated ones are). Throws rtlab::Error for boxes,
+/// oriented boxes and implicit surfaces.
 [[nodiscard]] TriangleMesh scene_to_mesh(const Scene& s, const SphereTess& tess);
 
 }  // namespace rtlab::gen

@@ -4,6 +4,7 @@
 #include "datasets_gen/tessellate.h"
 
 #include "base/error.h"
+#include "intersect/cone/cone.h"
 
 #include <algorithm>
 #include <charconv>
@@ -218,6 +219,61 @@ void append_spheres(TriangleMesh& out,
     const Template unit = unit_sphere(tess);
     for (const SphereSpec& s : spheres) {
         append_template(out, unit, s.radius, s.center);
+    }
+}
+
+void append_cone(TriangleMesh& out,
+                 const Vec3d& base,
+                 double base_radius,
+                 const Vec3d& apex,
+                 double apex_radius,
+                 bool cap_base,
+                 bool cap_apex,
+                 int segments) {
+    const Vec3d axis = normalize(apex - base);
+    Vec3d e1, e2;
+    detail::orthonormal_frame(axis, e1, e2);
+    const auto n = static_cast<std::uint32_t>(segments);
+    // One ring per end (a single point when its radius is 0), counter-clockwise about the axis.
+    const auto ring = [&](const Vec3d& c, double r) {
+        const auto start = static_cast<std::uint32_t>(out.positions.size());
+        if (r == 0) {
+            out.positions.push_back(Vec3f(c));
+            return start;
+        }
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const double phi = 2 * std::numbers::pi * i / n;
+            out.positions.push_back(Vec3f(c + (e1 * std::cos(phi) + e2 * std::sin(phi)) * r));
+        }
+        return start;
+    };
+    const std::uint32_t b = ring(base, base_radius);
+    const std::uint32_t a = ring(apex, apex_radius);
+    const auto bi = [&](std::uint32_t i) { return base_radius == 0 ? b : b + i % n; };
+    const auto ai = [&](std::uint32_t i) { return apex_radius == 0 ? a : a + i % n; };
+    for (std::uint32_t i = 0; i < n; ++i) {
+        // (b_i, b_i+1, a_i+1) winds outward: tangent x axis = radial.
+        if (base_radius != 0) {
+            out.triangles.push_back({bi(i), bi(i + 1), ai(i + 1)});
+        }
+        if (apex_radius != 0) {
+            out.triangles.push_back({bi(i), ai(i + 1), ai(i)});
+        }
+    }
+    const auto fan = [&](const Vec3d& c, std::uint32_t start, bool outward_is_axis) {
+        const auto centre = static_cast<std::uint32_t>(out.positions.size());
+        out.positions.push_back(Vec3f(c));
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t p = start + i, q = start + (i + 1) % n;
+            out.triangles.push_back(outward_is_axis ? std::array<std::uint32_t, 3>{centre, p, q}
+                                                    : std::array<std::uint32_t, 3>{centre, q, p});
+        }
+    };
+    if (cap_base && base_radius != 0) {
+        fan(base, b, false);
+    }
+    if (cap_apex && apex_radius != 0) {
+        fan(apex, a, true);
     }
 }
 

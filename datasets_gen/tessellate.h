@@ -1,6 +1,6 @@
 #pragma once
 // Sphere tessellation into closed, vertex-sharing triangle meshes: UV spheres ("uv:UxV") and
-// cube-projected spheres ("cube:N"), plus an edge-based closedness check.
+// cube-projected spheres ("cube:N"), cone tessellation, plus an edge-based closedness check.
 
 #include "intersect/vec.h"
 #include "mesh/triangle_mesh.h"
@@ -49,6 +49,20 @@ struct SphereSpec {
 
 /// Appends many tessellated spheres, building the unit template once.
 void append_spheres(TriangleMesh& out, std::span<const SphereSpec> spheres, const SphereTess& tess);
+
+/// Appends one tessellated truncated cone (scene/prim_cone.h): `segments` (>= 3) triangle pairs
+/// around the lateral surface (one band: generators are straight, so the mesh's vertices lie on
+/// the cone), a single vertex at an end of radius 0, and a triangle fan per requested cap;
+/// outward winding. Closed only when both ends are capped or pointed. Computed in double, rounded
+/// to float once.
+void append_cone(TriangleMesh& out,
+                 const Vec3d& base,
+                 double base_radius,
+                 const Vec3d& apex,
+                 double apex_radius,
+                 bool cap_base,
+                 bool cap_apex,
+                 int segments);
 
 /// Appends the surface of the integer box [0,n]^3 split into unit squares (two triangles each):
 /// 12*n^2 triangles, 6*n^2 + 2 vertices, all coordinates integers, outward winding.

@@ -41,6 +41,10 @@ std::vector<Row> run_degenerate(const Options& opt);
 /// Every structure against a box-free loop on constructed and stress scenes.
 std::vector<Row> run_structures(const Options& opt);
 
+/// Grazing, axis-parallel, coordinate-axis, thin and far rays on cones and cylinders: false
+/// misses and hits and t error of every cone method against the exact answer.
+std::vector<Row> run_cone(const Options& opt);
+
 /// Rays nearly tangent to spheres and nearly parallel to triangles and box faces vs exact answers.
 std::vector<Row> run_grazing(const Options& opt);
 

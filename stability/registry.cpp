@@ -53,6 +53,13 @@ const Case all_cases[] = {
      "Rays exactly tangent to a torus (double roots), grazing it, along and parallel to its axis, "
      "and random: missed roots and t error of closed form, Newton and Laguerre with run time.",
      &run_implicit},
+    {"cone",
+     "Cones and cylinders (open and capped): rays in a tangent plane moved off the surface by "
+     "1e-12..1e-2 radii, parallel to the cone's axis near its wall, along coordinate axes on "
+     "axis-aligned cylinders, thin needles (radius/height 1e-6..1e-2), small far cones (D/r "
+     "1e3..1e7) and random rays against the exact answer (rationals + MPFR): false misses and "
+     "hits, t error and run time of every cone method.",
+     &run_cone},
     {"structures",
      "Every structure (robust and plain) against a box-free loop over all primitives: a hit "
      "beyond the first cell or leaf a primitive overlaps, the stadium and scales scenes, and "

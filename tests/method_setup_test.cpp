@@ -4,6 +4,7 @@
 // with varied windows, the set-up done on the default window (RayData ignores the window). Also
 // checks the lists themselves (unique names, intersectors filtered).
 #include "intersect/box/methods.h"
+#include "intersect/cone/methods.h"
 #include "intersect/implicit/methods.h"
 #include "intersect/polygon/methods.h"
 #include "intersect/sphere/methods.h"
@@ -144,6 +145,7 @@ TEST_CASE("method lists: names unique, intersectors are the t-reporting methods"
     STATIC_REQUIRE(names_unique<PolygonMethods<double>>());
     STATIC_REQUIRE(names_unique<AabbMethods<double>>());
     STATIC_REQUIRE(names_unique<ObbMethods<double>>());
+    STATIC_REQUIRE(names_unique<ConeMethods<double>>());
     STATIC_REQUIRE(names_unique<ImplicitMethods<TangleCube, double>>());
     std::size_t all = 0, with_t = 0;
     for_each_type<TriangleMethods<float>>([&]<class M>() {
@@ -191,6 +193,35 @@ TEST_CASE("per-ray set-up: sphere methods bit-identical", "[intersect][setup][sp
     };
     check_list<SphereMethods<float>>(shapes, rays);
     check_list<SphereMethods<double>>(shapes, rays);
+}
+
+TEST_CASE("per-ray set-up: cone methods bit-identical", "[intersect][setup][cone]") {
+    Rng rng(17);
+    std::vector<Coned> cones;
+    std::vector<Vec3d> edges;
+    for (int i = 0; i < 8; ++i) {
+        Coned c;
+        c.base = rng.point(1.0);
+        c.apex = c.base + rng.point(0.8);
+        c.base_radius = rng.uni(0.05, 0.6);
+        c.apex_radius = i % 3 == 0 ? c.base_radius : (i % 3 == 1 ? 0.0 : rng.uni(0.0, 0.6));
+        c.caps = static_cast<ConeCaps>(i % 4);
+        cones.push_back(c);
+        edges.push_back(c.base);
+        edges.push_back((c.base + c.apex) * 0.5);
+    }
+    const std::vector<Rayd> rays = test_rays(rng, edges, 900);
+    const auto shapes = [&](auto x) {
+        using T = decltype(x);
+        std::vector<Cone<T>> out;
+        for (const Coned& c : cones) {
+            out.push_back({Vec3<T>(c.base), static_cast<T>(c.base_radius), Vec3<T>(c.apex),
+                           static_cast<T>(c.apex_radius), c.caps});
+        }
+        return out;
+    };
+    check_list<ConeMethods<float>>(shapes, rays);
+    check_list<ConeMethods<double>>(shapes, rays);
 }
 
 TEST_CASE("per-ray set-up: box methods bit-identical", "[intersect][setup][box]") {

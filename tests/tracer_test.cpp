@@ -99,6 +99,17 @@ Scene family_scene(std::string_view family, std::uint64_t seed) {
         }
     } else if (family == "obb") {
         add_obbs(s, rng, space);
+    } else if (family == "cone") {
+        // Cylinders, truncated and pointed cones, open and capped, in random orientations.
+        for (int i = 0; i < 80; ++i) {
+            ConeObject o;
+            o.base = rng.point_in(space);
+            o.apex = o.base + rng.direction() * rng.uniform(0.1f, 0.8f);
+            o.base_radius = rng.uniform(0.02f, 0.3f);
+            o.apex_radius = i % 3 == 0 ? o.base_radius : (i % 3 == 1 ? 0.0f : rng.uniform(0, 0.3f));
+            o.caps = static_cast<ConeCaps>(i % 4);
+            s.add(o);
+        }
     } else if (family == "implicit") {
         // Both surfaces, so both shape lists of the family are traced.
         for (int i = 0; i < 6; ++i) {
