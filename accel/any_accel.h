@@ -12,6 +12,7 @@
 #include "accel/accel.h"
 #include "accel/brute_force.h"
 #include "accel/bvh/bvh.h"
+#include "accel/bvh/wide_bvh.h"
 #include "accel/grid/grid.h"
 #include "accel/kdtree/kdtree.h"
 #include "accel/spec.h"
@@ -27,7 +28,7 @@
 namespace rtlab {
 
 /// Every structure type (node layout) a registry row can build.
-using AccelTypes = std::tuple<BruteForce, Bvh, KdTree, Grid>;
+using AccelTypes = std::tuple<BruteForce, Bvh, WideBvh<4>, WideBvh<8>, KdTree, Grid>;
 
 namespace detail {
 template <class List>
