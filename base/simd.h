@@ -98,7 +98,7 @@ private:
 // across levels (the build also sets -ffp-contract=off).
 #define RTLAB_SIMD_BEGIN_AVX2 \
     _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,bmi,bmi2,popcnt,lzcnt\")")
-#define RTLAB_SIMD_BEGIN_AVX512                                                            \
-    _Pragma("GCC push_options")                                                            \
+#define RTLAB_SIMD_BEGIN_AVX512 \
+    _Pragma("GCC push_options") \
         _Pragma("GCC target(\"avx512f,avx512vl,avx512dq,avx512bw,avx2,bmi,bmi2,popcnt,lzcnt\")")
 #define RTLAB_SIMD_END _Pragma("GCC pop_options")

@@ -29,4 +29,3 @@ namespace rtlab::simd_avx512 {
 #undef RTLAB_LANES_LEVEL
 }  // namespace rtlab::simd_avx512
 RTLAB_SIMD_END
-

@@ -90,7 +90,8 @@ private:
         const WideView<N> view{nodes.data(), prim_ids.data()};
         switch (simd_level()) {
         case SimdLevel::avx512:
-            return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
+            return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,
+                                                                           stats);
         case SimdLevel::avx2:
             return simd_avx2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
         case SimdLevel::sse2:

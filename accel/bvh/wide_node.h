@@ -18,10 +18,10 @@ struct alignas(64) WideNode {
     static_assert(N == 4 || N == 8, "wide nodes hold 4 or 8 children");
     static constexpr std::uint32_t empty_slot = 0xffffffffu;
 
-    float lo[3][N];            ///< lo[axis][slot]: child box minima
-    float hi[3][N];            ///< hi[axis][slot]: child box maxima
-    std::uint32_t child[N];    ///< inner: node index; leaf: first prim_ids slot; empty_slot
-    std::uint32_t count[N];    ///< leaf primitive count; 0 for inner and empty slots
+    float lo[3][N];          ///< lo[axis][slot]: child box minima
+    float hi[3][N];          ///< hi[axis][slot]: child box maxima
+    std::uint32_t child[N];  ///< inner: node index; leaf: first prim_ids slot; empty_slot
+    std::uint32_t count[N];  ///< leaf primitive count; 0 for inner and empty slots
 
     /// A node with every slot empty.
     static WideNode empty() {
