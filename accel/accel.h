@@ -60,6 +60,32 @@ concept AnyHitFn = requires(F& f, std::uint32_t id, const Rayf& ray) {
     { f(id, ray) } -> std::convertible_to<bool>;
 };
 
+/// Leaf-range callback: tests the primitives of leaf slots [first, first + count) (see
+/// LeafRangeAccel) against ray (R is Rayf for closest hit, which shrinks ray.tmax, const Rayf for
+/// any hit) and returns true on a hit.
+template <class F, class R>
+concept LeafRangeFn = requires(F& f, std::uint32_t first, std::uint32_t count, R& ray) {
+    { f(first, count, ray) } -> std::convertible_to<bool>;
+};
+
+namespace detail {
+/// A leaf-range callback that never hits, used to state LeafRangeAccel.
+struct NullLeafRange {
+    bool operator()(std::uint32_t, std::uint32_t, const Rayf&) const { return false; }
+};
+}  // namespace detail
+
+/// Optional: a structure whose leaves are ranges of `prim_ids` slots can hand a caller whole
+/// leaves, so the caller may store its primitive data in slot order (no id indirection in the hot
+/// loop) and test a leaf at once. `soa_leaves` says whether callers should.
+template <class A>
+concept LeafRangeAccel = requires(const A& a, Rayf& ray, const Rayf& cray) {
+    { a.prim_ids[0] } -> std::convertible_to<std::uint32_t>;
+    { a.soa_leaves } -> std::convertible_to<bool>;
+    { a.intersect_leaves(ray, detail::NullLeafRange{}) } -> std::same_as<bool>;
+    { a.occluded_leaves(cray, detail::NullLeafRange{}) } -> std::same_as<bool>;
+};
+
 /// The one rule every builder applies: a primitive box is indexed only when its coordinates are
 /// finite and lo <= hi on every axis. An empty box is hit by no ray, a NaN box bounds no real
 /// geometry, and an infinite one would make every enclosing node infinite (unbounded primitives

@@ -13,6 +13,7 @@
 #include "accel/brute_force.h"
 #include "accel/bvh/bvh.h"
 #include "accel/bvh/pair_bvh.h"
+#include "accel/bvh/wide_bvh.h"
 #include "accel/grid/grid.h"
 #include "accel/kdtree/kdtree.h"
 #include "accel/spec.h"
@@ -28,7 +29,7 @@
 namespace rtlab {
 
 /// Every structure type (node layout) a registry row can build.
-using AccelTypes = std::tuple<BruteForce, Bvh, PairBvh, KdTree, Grid>;
+using AccelTypes = std::tuple<BruteForce, Bvh, PairBvh, WideBvh<4>, WideBvh<8>, KdTree, Grid>;
 
 namespace detail {
 template <class List>

@@ -159,6 +159,27 @@ AnyAccel row(const BuildInput& in, const AccelSpec& s) {
     return B(in, ToConfig(s));
 }
 
+// The binary builders a wide layout can collapse, in the order of the `from` choice.
+constexpr Bvh (*binary_builders[])(const BuildInput&, const Bvh::Config&) = {
+    build_bvh_binned_sah, build_bvh_sweep_sah, build_bvh_median, build_bvh_lbvh};
+const ParamSpec from_binary = choice_param(
+    "from", 0, {"binned", "sweep", "median", "lbvh"}, "the binary builder whose tree is collapsed");
+
+const ParamSpec leaves = choice_param("leaves",
+                                      0,
+                                      {"soa", "ids"},
+                                      "soa: tracers test whole leaves with SIMD kernels on "
+                                      "slot-ordered data; ids: one primitive id at a time");
+
+/// A wide layout's row: the `from` builder with the spec's Config, collapsed to N children.
+template <unsigned N>
+AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
+    const auto from = static_cast<std::size_t>(s.value("from"));
+    WideBvh<N> w = collapse_bvh<N>(binary_builders[from](in, bvh_config(s)));
+    w.soa_leaves = s.value("leaves") == 0;
+    return w;
+}
+
 AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
     return BruteForce::build(in);
 }
@@ -189,6 +210,14 @@ const AccelEntry registry_rows[] = {
      "binary BVH, Morton-code radix tree (Karras 2012)",
      {max_leaf, morton_bits},
      &row<build_bvh_lbvh, bvh_config>},
+    {"bvh4",
+     "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
+     {from_binary, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits},
+     &wide_row<4>},
+    {"bvh8",
+     "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
+     {from_binary, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits},
+     &wide_row<8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006)",
      {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},

@@ -218,7 +218,7 @@ TEST_CASE("SAH BVHs visit far fewer boxes than brute force", "[accel][agreement]
                            [&](const auto& s) { return test::closest_hit_stats(s, soup, rays); });
     };
     const TraversalStats brute = count("brute");
-    for (const std::string_view name : {"bvh:binned", "bvh:sweep"}) {
+    for (const std::string_view name : {"bvh:binned", "bvh:sweep", "bvh4", "bvh8"}) {
         CAPTURE(name);
         const TraversalStats st = count(name);
         CHECK(st.rays == brute.rays);

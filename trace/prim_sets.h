@@ -5,8 +5,10 @@
 
 #include "accel/any_accel.h"
 #include "trace/method_families.h"
+#include "trace/triangle_soa.h"
 
 #include <cstdint>
+#include <optional>
 #include <tuple>
 #include <variant>
 #include <vector>
@@ -20,7 +22,18 @@ struct PrimSet {
     std::vector<typename M::Prepared> prims;  ///< local index = structure's primitive id
     std::vector<std::uint32_t> ids;           ///< global primitive id of each local one
     AnyAccel accel;                           ///< built over M::bounds of prims
+    /// The triangles in the structure's leaf-slot order (empty unless M has a leaf kernel and the
+    /// structure offers whole leaves with soa_leaves set; see trace/triangle_soa.h).
+    TriangleSoA soa;
 };
+
+/// The SoaLayout of M's leaf kernel, for the methods that have one.
+template <class M>
+inline constexpr std::optional<SoaLayout> soa_layout_of = std::nullopt;
+template <>
+inline constexpr std::optional<SoaLayout> soa_layout_of<MollerTrumbore<float>> = SoaLayout::edges;
+template <>
+inline constexpr std::optional<SoaLayout> soa_layout_of<Watertight<float>> = SoaLayout::vertices;
 
 namespace detail {
 template <class List>

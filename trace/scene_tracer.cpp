@@ -37,6 +37,15 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
     set.accel = build_accel(accel, BuildInput{bounds, clip});
     build_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if constexpr (soa_layout_of<M>.has_value()) {
+        visit_accel(set.accel, [&](const auto& a) {
+            if constexpr (LeafRangeAccel<std::decay_t<decltype(a)>>) {
+                if (a.soa_leaves) {
+                    set.soa = make_triangle_soa(set.prims, a.prim_ids, *soa_layout_of<M>);
+                }
+            }
+        });
+    }
     return set;
 }
 
@@ -171,8 +180,46 @@ struct PerRaySink {
     void finish() {}
 };
 
+// True when set s of method M on structure A is traced leaf by leaf with M's SIMD leaf kernel.
+template <class M, class A>
+bool uses_leaf_kernel(const PrimSet<M>& s, const A&) {
+    if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+        return s.soa.size() != 0;
+    } else {
+        return false;
+    }
+}
+
+// The leaf kernel of M (MollerTrumbore or Watertight) on slots [first, first + count).
+template <class M>
+std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
+                                    std::uint32_t first,
+                                    std::uint32_t count,
+                                    Rayf& ray,
+                                    const RayDataOf<M>& rd) {
+    if constexpr (std::is_same_v<M, Watertight<float>>) {
+        return soa_closest_watertight(q, first, count, ray, rd);
+    } else {
+        return soa_closest_mt(q, first, count, ray);
+    }
+}
+
+template <class M>
+std::optional<std::uint32_t> leaf_any(const TriangleSoA& q,
+                                      std::uint32_t first,
+                                      std::uint32_t count,
+                                      const Rayf& ray,
+                                      const RayDataOf<M>& rd) {
+    if constexpr (std::is_same_v<M, Watertight<float>>) {
+        return soa_any_watertight(q, first, count, ray, rd);
+    } else {
+        return soa_any_mt(q, first, count, ray);
+    }
+}
+
 // Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray
-// set-up runs once per ray and set, before traversal.
+// set-up runs once per ray and set, before traversal. Sets with slot-ordered leaf data test whole
+// leaves (ids looked up only for the reported hit).
 struct ClosestQuery {
     std::span<const Rayf> rays;
     std::span<Hit> hits;
@@ -185,6 +232,22 @@ struct ClosestQuery {
         Rayf ray = rays[i];
         ray.tmax = std::min(ray.tmax, hits[i].t);
         const RayDataOf<M> rd = precompute_ray<M>(ray);
+        if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+            if (uses_leaf_kernel(s, acc)) {
+                SlotHit best{};
+                const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
+                    const auto h = leaf_closest<M>(s.soa, first, count, rr, rd);
+                    if (h) {
+                        best = *h;
+                    }
+                    return h.has_value();
+                };
+                if (acc.template intersect_leaves<IsRobust>(ray, leaf, stats)) {
+                    hits[i] = {best.hit.t, best.hit.u, best.hit.v, s.ids[acc.prim_ids[best.slot]]};
+                }
+                return;
+            }
+        }
         std::uint32_t best = invalid_id;
         PrimHit<float> best_hit{};
         const auto leaf = [&, rd](std::uint32_t id, Rayf& rr) {
@@ -217,6 +280,20 @@ struct AnyHitQuery {
             return;
         }
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
+        if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+            if (uses_leaf_kernel(s, acc)) {
+                std::uint32_t slot = 0;
+                const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
+                    const auto h = leaf_any<M>(s.soa, first, count, rr, rd);
+                    slot = h.value_or(0);
+                    return h.has_value();
+                };
+                if (acc.template occluded_leaves<IsRobust>(rays[i], leaf, stats)) {
+                    blocker[i] = s.ids[acc.prim_ids[slot]];
+                }
+                return;
+            }
+        }
         std::uint32_t found = invalid_id;
         const auto leaf = [&, rd](std::uint32_t id, const Rayf& rr) {
             if (!occluded_with<M>(s.prims[id], rr, rd)) {

@@ -1,0 +1,159 @@
+// WideBvh: bounds, size and SAH figures, and the invariant check.
+
+#include "accel/bvh/wide_bvh.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+namespace rtlab {
+
+template <unsigned N>
+Bounds3f WideBvh<N>::bounds() const {
+    Bounds3f b;
+    if (!nodes.empty()) {
+        for (unsigned i = 0; i < N && nodes[0].occupied(i); ++i) {
+            b.extend(nodes[0].bounds(i));
+        }
+    }
+    return b;
+}
+
+template <unsigned N>
+AccelInfo WideBvh<N>::info() const {
+    AccelInfo info;
+    info.nodes = nodes.size();
+    info.bytes = nodes.size() * sizeof(WideNode<N>) + prim_ids.size() * sizeof(std::uint32_t);
+    info.bytes_per_prim =
+        prim_count == 0 ? 0.0 : static_cast<double>(info.bytes) / static_cast<double>(prim_count);
+    info.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    if (nodes.empty()) {
+        return info;
+    }
+    const double ct = static_cast<double>(config.traversal_cost);
+    const double ci = static_cast<double>(config.intersection_cost);
+    const double root_area = static_cast<double>(bounds().surface_area());
+    double cost = root_area * ct;  // the root node itself
+    struct Item {
+        std::uint32_t node, depth;
+    };
+    std::vector<Item> stack{{0, 0}};
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const WideNode<N>& n = nodes[it.node];
+        for (unsigned i = 0; i < N && n.occupied(i); ++i) {
+            const double area = static_cast<double>(n.bounds(i).surface_area());
+            if (n.is_leaf(i)) {
+                ++info.leaves;
+                info.max_depth = std::max(info.max_depth, it.depth + 1);
+                cost += area * ci * static_cast<double>(n.count[i]);
+            } else {
+                cost += area * ct;
+                stack.push_back({n.child[i], it.depth + 1});
+            }
+        }
+    }
+    info.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
+    return info;
+}
+
+template <unsigned N>
+std::string WideBvh<N>::validate() const {
+    if (prim_ids.size() + unreferenced_count != prim_count) {
+        return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
+               std::to_string(prim_count - unreferenced_count);
+    }
+    std::vector<char> seen(prim_count, 0);
+    for (const std::uint32_t id : prim_ids) {
+        if (id >= prim_count) {
+            return "primitive id " + std::to_string(id) + " out of range";
+        }
+        if (seen[id]) {
+            return "primitive " + std::to_string(id) + " referenced twice";
+        }
+        seen[id] = 1;
+    }
+    if (nodes.empty()) {
+        return prim_ids.empty() ? std::string{} : "primitives but no nodes";
+    }
+    std::vector<char> slot_used(prim_ids.size(), 0);
+    std::vector<char> node_seen(nodes.size(), 0);
+    struct Item {
+        std::uint32_t node, depth;
+        Bounds3f box;  // the parent slot's box (everything for the root)
+    };
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<Item> stack{{0, 0, {{-inf, -inf, -inf}, {inf, inf, inf}}}};
+    std::size_t visited = 0;
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const std::string where = "node " + std::to_string(it.node) + ": ";
+        if (node_seen[it.node]) {
+            return where + "reached twice";
+        }
+        node_seen[it.node] = 1;
+        ++visited;
+        if (it.depth > 64) {
+            return where + "depth " + std::to_string(it.depth) + " > 64";
+        }
+        const WideNode<N>& n = nodes[it.node];
+        unsigned used = 0;
+        for (unsigned i = 0; i < N; ++i) {
+            const std::string slot = where + "slot " + std::to_string(i) + ": ";
+            const Bounds3f box = n.bounds(i);
+            if (!n.occupied(i)) {
+                if (n.count[i] != 0 || !(box == Bounds3f{})) {
+                    return slot + "empty slot with a count or a box";
+                }
+                continue;
+            }
+            if (used != i) {
+                return slot + "occupied after an empty slot";
+            }
+            ++used;
+            if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) {
+                return slot + "empty or NaN box";
+            }
+            if (!it.box.contains(box)) {
+                return slot + "box outside its parent's";
+            }
+            if (n.is_leaf(i)) {
+                const std::uint32_t first = n.child[i], count = n.count[i];
+                if (count > config.max_leaf_size) {
+                    return slot + "leaf of " + std::to_string(count) + " > max_leaf_size";
+                }
+                if (first > prim_ids.size() || count > prim_ids.size() - first) {
+                    return slot + "leaf range outside prim_ids";
+                }
+                for (std::uint32_t s = first; s < first + count; ++s) {
+                    if (slot_used[s]) {
+                        return slot + "prim_ids slot " + std::to_string(s) + " in two leaves";
+                    }
+                    slot_used[s] = 1;
+                }
+            } else {
+                if (n.child[i] <= it.node || n.child[i] >= nodes.size()) {
+                    return slot + "child not after the parent or out of range";
+                }
+                stack.push_back({n.child[i], it.depth + 1, box});
+            }
+        }
+        if (used < (it.node == 0 ? 1u : 2u)) {
+            return where + std::to_string(used) + " children";
+        }
+    }
+    if (visited != nodes.size()) {
+        return std::to_string(nodes.size() - visited) + " nodes unreachable";
+    }
+    if (std::find(slot_used.begin(), slot_used.end(), 0) != slot_used.end()) {
+        return "a prim_ids slot lies in no leaf";
+    }
+    return {};
+}
+
+template struct WideBvh<4>;
+template struct WideBvh<8>;
+
+}  // namespace rtlab

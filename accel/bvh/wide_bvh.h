@@ -1,0 +1,115 @@
+#pragma once
+// Wide BVHs (BVH4, BVH8) collapsed from any binary build (accel/bvh/wide_collapse.cpp): each
+// wide node pulls up the grandchildren of largest surface area until it holds N children, so the
+// nodes most rays reach are opened first (SAH-aware collapse as in Embree's BVH4/8 builders).
+// Traversal clips the ray against all N child boxes with one SIMD slab test (accel/bvh/
+// wide_kernels.h, compiled for SSE2, AVX2 and AVX-512 and chosen per call by base/simd.h), visits
+// the hit children near to far by entry distance, skips popped entries beyond the shrunk tmax and
+// stops at the first any-hit. Leaf slots index prim_ids in the binary build's leaf order.
+
+#include "accel/accel.h"
+#include "accel/bvh/bvh.h"
+#include "accel/bvh/wide_kernels.h"
+#include "accel/bvh/wide_node.h"
+#include "base/simd.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtlab {
+
+/// A BVH with N (4 or 8) children per node; nodes[0] is the root (holding the binary root's
+/// children, or the binary root itself when that is a leaf).
+template <unsigned N>
+struct WideBvh {
+    static constexpr unsigned width = N;
+
+    std::vector<WideNode<N>> nodes;        ///< root at 0; empty when no box was usable
+    std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
+    std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
+    std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
+    Bvh::Config config;                    ///< the source binary build's configuration
+    /// True when tracers should store triangle data in slot order and test whole leaves with the
+    /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
+    bool soa_leaves = true;
+
+    /// Closest hit: offers hit_fn every primitive of every leaf whose box the shrinking window
+    /// meets, nearer children first. Invalid rays return false before any node.
+    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
+    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return dispatch<false, IsRobust, false>(ray, hit_fn, stats);
+    }
+
+    /// Closest hit offering whole leaves: leaf_fn(first, count, ray) tests the primitives of
+    /// prim_ids slots [first, first + count) (in slot order, as intersect would offer them one by
+    /// one), shrinks ray.tmax on a hit and returns true. For leaf data stored in slot order.
+    template <bool IsRobust = false, LeafRangeFn<Rayf> F, StatsSink S = NoStats>
+    bool intersect_leaves(Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        return dispatch<false, IsRobust, true>(ray, leaf_fn, stats);
+    }
+
+    /// Any hit offering whole leaves: the first leaf_fn(first, count, ray) returning true ends it.
+    template <bool IsRobust = false, LeafRangeFn<const Rayf> F, StatsSink S = NoStats>
+    bool occluded_leaves(const Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        return dispatch<true, IsRobust, true>(ray, leaf_fn, stats);
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return dispatch<true, IsRobust, false>(ray, hit_fn, stats);
+    }
+
+    /// The union of the root's child boxes (empty when no box was usable).
+    Bounds3f bounds() const;
+
+    /// Sizes, depth and the SAH cost sum(wide node A * Ct) + sum(leaf A * n * Ci) over A(root)
+    /// with the source build's Ct and Ci (a wide node visit counted as one node visit).
+    AccelInfo info() const;
+
+    /// Empty when every invariant holds (each usable primitive referenced once, leaves of at
+    /// most max_leaf_size primitives covering prim_ids exactly, occupied slots first with
+    /// non-empty boxes, every child box inside its parent slot's box, inner nodes other than the
+    /// root with at least two children, every node reached once, depth <= 64); else the first
+    /// violation.
+    std::string validate() const;
+
+    friend bool operator==(const WideBvh&, const WideBvh&) = default;
+
+private:
+    template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
+    bool dispatch(R& ray, F& hit_fn, S& stats) const {
+        if (!is_valid(ray)) {
+            return false;
+        }
+        stats.count_ray();
+        if (nodes.empty()) {
+            return false;
+        }
+        const WideView<N> view{nodes.data(), prim_ids.data()};
+        switch (simd_level()) {
+        case SimdLevel::avx512:
+            return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,
+                                                                           stats);
+        case SimdLevel::avx2:
+            return simd_avx2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
+        case SimdLevel::sse2:
+            break;
+        }
+        return simd_sse2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
+    }
+};
+
+/// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp).
+template <unsigned N>
+WideBvh<N> collapse_bvh(const Bvh& binary);
+
+extern template struct WideBvh<4>;
+extern template struct WideBvh<8>;
+
+static_assert(Accel<WideBvh<4>>);
+static_assert(Accel<WideBvh<8>>);
+static_assert(LeafRangeAccel<WideBvh<4>> && LeafRangeAccel<WideBvh<8>>);
+
+}  // namespace rtlab

@@ -1,0 +1,51 @@
+#pragma once
+// The wide BVH node test and traversal loop (accel/bvh/wide_traverse.inc) compiled once per SIMD
+// level of base/simd.h: namespaces simd_sse2, simd_avx2 and simd_avx512, each in its own target
+// region with that level's lanes (base/simd_lanes.h). WideBvh picks one per call by simd_level().
+
+#include "accel/accel.h"
+#include "accel/bvh/wide_node.h"
+#include "base/simd_lanes.h"
+#include "intersect/box/slabs.h"
+
+#include <cassert>
+#include <cstdint>
+
+namespace rtlab {
+
+/// What traversal reads of a WideBvh: its nodes and leaf slots.
+template <unsigned N>
+struct WideView {
+    const WideNode<N>* nodes;
+    const std::uint32_t* prim_ids;
+};
+
+/// A traversal stack entry: a child slot's reference and count (as in WideNode) and the entry
+/// distance its box test gave.
+struct WideEntry {
+    std::uint32_t ref;
+    std::uint32_t count;
+    float t;
+};
+
+/// Stack entries traversal can need: at most N - 1 pushed per level, depth <= 64.
+template <unsigned N>
+inline constexpr unsigned wide_stack_size = 64 * (N - 1) + 1;
+
+}  // namespace rtlab
+
+namespace rtlab::simd_sse2 {
+#include "accel/bvh/wide_traverse.inc"
+}  // namespace rtlab::simd_sse2
+
+RTLAB_SIMD_BEGIN_AVX2
+namespace rtlab::simd_avx2 {
+#include "accel/bvh/wide_traverse.inc"
+}  // namespace rtlab::simd_avx2
+RTLAB_SIMD_END
+
+RTLAB_SIMD_BEGIN_AVX512
+namespace rtlab::simd_avx512 {
+#include "accel/bvh/wide_traverse.inc"
+}  // namespace rtlab::simd_avx512
+RTLAB_SIMD_END

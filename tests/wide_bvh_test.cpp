@@ -1,0 +1,187 @@
+// Wide BVHs (BVH4, BVH8): the SIMD node test of every level the CPU runs against the scalar
+// clip_slabs, collapse from every binary builder, and every level's traversal against brute force
+// and against the other levels (same answers, same counts).
+
+#include "accel/bvh/wide_bvh.h"
+
+#include "accel/any_accel.h"
+#include "base/simd.h"
+#include "support/accel_checks.h"
+#include "support/accel_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <bit>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace rtlab {
+namespace {
+
+/// The levels this CPU runs, lowest first.
+std::vector<SimdLevel> runnable_levels() {
+    std::vector<SimdLevel> out;
+    for (const SimdLevel l : simd_levels) {
+        if (l <= simd_supported()) {
+            out.push_back(l);
+        }
+    }
+    return out;
+}
+
+/// wide_node_hits of level l.
+template <bool IsRobust, unsigned N>
+unsigned node_hits_at(
+    SimdLevel l, const WideNode<N>& n, const SlabRay<float>& r, float tmin, float tmax, float* tn) {
+    switch (l) {
+    case SimdLevel::avx512:
+        return simd_avx512::wide_node_hits<IsRobust>(n, r, tmin, tmax, tn);
+    case SimdLevel::avx2:
+        return simd_avx2::wide_node_hits<IsRobust>(n, r, tmin, tmax, tn);
+    case SimdLevel::sse2:
+        break;
+    }
+    return simd_sse2::wide_node_hits<IsRobust>(n, r, tmin, tmax, tn);
+}
+
+template <bool IsRobust, unsigned N>
+void check_node_test(const test::Soup& soup, const std::vector<Rayf>& rays) {
+    // Nodes of N consecutive soup boxes (empty boxes included: they must miss).
+    for (std::size_t first = 0; first + N <= soup.boxes.size(); first += N) {
+        WideNode<N> node = WideNode<N>::empty();
+        for (unsigned i = 0; i < N; ++i) {
+            const Bounds3f& b = soup.boxes[first + i];
+            node.set(i, b, 0, 0);
+        }
+        for (const Rayf& ray : rays) {
+            if (!is_valid(ray)) {
+                continue;
+            }
+            const SlabRay<float> sr(ray);
+            unsigned want = 0;
+            float want_t[N];
+            for (unsigned i = 0; i < N; ++i) {
+                float t0 = ray.tmin, t1 = ray.tmax;
+                const Bounds3f b = node.bounds(i);
+                if (clip_slabs<IsRobust>(b.lo, b.hi, sr, t0, t1)) {
+                    want |= 1u << i;
+                    want_t[i] = t0;
+                }
+            }
+            for (const SimdLevel l : runnable_levels()) {
+                CAPTURE(simd_name(l), first);
+                alignas(32) float tn[N];
+                const unsigned got = node_hits_at<IsRobust>(l, node, sr, ray.tmin, ray.tmax, tn);
+                REQUIRE(got == want);
+                for (unsigned i = 0; i < N; ++i) {
+                    if ((want >> i) & 1u) {
+                        // Bit-identical entry distances.
+                        REQUIRE(std::bit_cast<std::uint32_t>(tn[i]) ==
+                                std::bit_cast<std::uint32_t>(want_t[i]));
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("the SIMD node test of every level equals clip_slabs bit for bit", "[accel][wide]") {
+    const auto seed = GENERATE(take(3, random(0u, 1u << 30)));
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, seed, 256);
+    const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
+    check_node_test<false, 4>(soup, rays);
+    check_node_test<true, 4>(soup, rays);
+    check_node_test<false, 8>(soup, rays);
+    check_node_test<true, 8>(soup, rays);
+    // Boxes on lattice planes, rays on their faces and along axes.
+    const test::Soup lattice = test::lattice_soup({0, 0, 0.5f});
+    const std::vector<Rayf> lrays = test::random_rays(lattice, seed, 300);
+    check_node_test<false, 8>(lattice, lrays);
+    check_node_test<true, 8>(lattice, lrays);
+}
+
+TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees", "[accel][wide]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 7, 2000);
+    for (const char* from : {"binned", "sweep", "median", "lbvh"}) {
+        const AnyAccel binary = build_accel(std::string("bvh:") + from, soup.input());
+        const AccelInfo bi = accel_info(binary);
+        for (const char* wide : {"bvh4", "bvh8"}) {
+            CAPTURE(from, wide);
+            const AnyAccel w = build_accel(std::string(wide) + ",from=" + from, soup.input());
+            REQUIRE(accel_validate(w).empty());
+            const AccelInfo wi = accel_info(w);
+            CHECK(wi.leaves == bi.leaves);  // leaves are kept as the binary build made them
+            CHECK(wi.nodes < bi.nodes / 2);
+            CHECK(wi.max_depth < bi.max_depth);
+            CHECK(wi.sah_cost > 0);
+            CHECK(accel_bounds(w) == accel_bounds(binary));
+        }
+    }
+}
+
+TEST_CASE("wide BVH validate() finds broken invariants", "[accel][wide]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 300);
+    const WideBvh<8> good = std::get<WideBvh<8>>(build_accel("bvh8", soup.input()));
+    REQUIRE(good.validate().empty());
+    WideBvh<8> b = good;
+    b.nodes[0].lo[0][0] -= 1.0f;  // still fine: the root has no parent box
+    CHECK(b.validate().empty());
+    b = good;
+    b.prim_ids[0] = b.prim_ids[1];
+    CHECK(!b.validate().empty());
+    b = good;
+    std::uint32_t inner = 0;
+    while (b.nodes[0].is_leaf(inner)) {
+        ++inner;
+    }
+    const std::uint32_t child = b.nodes[0].child[inner];
+    b.nodes[child].hi[1][0] = b.nodes[0].hi[1][inner] + 1.0f;
+    CHECK(b.validate().find("outside") != std::string::npos);
+    b = good;
+    b.nodes[child].child[1] = WideNode<8>::empty_slot;
+    CHECK(!b.validate().empty());
+}
+
+TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with the others",
+          "[accel][wide]") {
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    const auto count = GENERATE(1u, 9u, 700u);
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    CAPTURE(static_cast<int>(kind), count, seed);
+    const test::Soup soup = test::random_soup(kind, seed, count);
+    const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
+    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
+        CAPTURE(spec);
+        const AnyAccel accel = build_accel(spec, soup.input());
+        REQUIRE(accel_validate(accel).empty());
+        std::vector<Hit> first_hits;
+        std::vector<TraversalStats> first_stats;
+        for (const SimdLevel l : runnable_levels()) {
+            CAPTURE(simd_name(l));
+            const ScopedSimdCap cap(l);
+            REQUIRE(simd_level() == l);
+            visit_accel(accel, [&](const auto& s) {
+                test::check_agrees_with_brute_force(s, soup, rays);
+                for (std::size_t i = 0; i < rays.size(); ++i) {
+                    Hit h;
+                    Rayf r = rays[i];
+                    TraversalStats st;
+                    s.template intersect<true>(r, soup.closest_hit(h), st);
+                    if (l == SimdLevel::sse2) {
+                        first_hits.push_back(h);
+                        first_stats.push_back(st);
+                    } else {
+                        REQUIRE(h.prim == first_hits[i].prim);
+                        REQUIRE(h.t == first_hits[i].t);
+                        REQUIRE(st.nodes == first_stats[i].nodes);
+                        REQUIRE(st.prims == first_stats[i].prims);
+                    }
+                }
+            });
+        }
+    }
+}
+
+}  // namespace
+}  // namespace rtlab
