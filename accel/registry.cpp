@@ -159,23 +159,16 @@ AnyAccel row(const BuildInput& in, const AccelSpec& s) {
     return B(in, ToConfig(s));
 }
 
-// The binary builders a wide layout can collapse, in the order of the `from` choice.
-constexpr Bvh (*binary_builders[])(const BuildInput&, const Bvh::Config&) = {
-    build_bvh_binned_sah, build_bvh_sweep_sah, build_bvh_median, build_bvh_lbvh};
-const ParamSpec from_binary = choice_param(
-    "from", 0, {"binned", "sweep", "median", "lbvh"}, "the binary builder whose tree is collapsed");
-
 const ParamSpec leaves = choice_param("leaves",
                                       0,
                                       {"soa", "ids"},
                                       "soa: tracers test whole leaves with SIMD kernels on "
                                       "slot-ordered data; ids: one primitive id at a time");
 
-/// A wide layout's row: the `from` builder with the spec's Config, collapsed to N children.
+/// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
 AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
-    const auto from = static_cast<std::size_t>(s.value("from"));
-    WideBvh<N> w = collapse_bvh<N>(binary_builders[from](in, bvh_config(s)));
+    WideBvh<N> w = collapse_bvh<N>(source_bvh(in, s));
     w.soa_leaves = s.value("leaves") == 0;
     return w;
 }
@@ -200,7 +193,7 @@ const AccelEntry registry_rows[] = {
      &pbinned_row},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, max_leaf, bins, bvh_ct, bvh_ci, threads},
+     {from, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
@@ -212,11 +205,11 @@ const AccelEntry registry_rows[] = {
      &row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from_binary, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits},
+     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &wide_row<4>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from_binary, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits},
+     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &wide_row<8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006)",
