@@ -12,13 +12,17 @@
 namespace rtlab::gen {
 
 std::span<const Generator> generators() {
-    static const std::vector<Generator> table{
-        flake_generator(),          tetra_generator(),   mount_generator(),
-        shells_generator(),         gears_generator(),   soup_generator(),
-        soup_clustered_generator(), stadium_generator(), slivers_generator(),
-        intgrid_generator(),        far_generator(),     scales_generator(),
-        coplanar_generator(),       nested_generator(),
-    };
+    static const std::vector<Generator> table = [] {
+        std::vector<Generator> t = spd_generators();
+        for (const Generator& g :
+             {flake_generator(), terrain_generator(), spiral_generator(), gearbox_generator(),
+              soup_generator(), soup_clustered_generator(), stadium_generator(),
+              slivers_generator(), intgrid_generator(), far_generator(), scales_generator(),
+              coplanar_generator(), nested_generator()}) {
+            t.push_back(g);
+        }
+        return t;
+    }();
     return table;
 }
 
