@@ -79,7 +79,7 @@ void add_floor(
         m.material = material;
         s.add(std::move(m));
     } else {
-        s.add(PolygonObject{corners, material});
+        s.add(PolygonObject{corners, material, {}});
     }
 }
 

@@ -14,16 +14,9 @@ namespace rtlab::gen::spd {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-const Vec3d sky_blue{0.078, 0.361, 0.753};  // "UNC sky blue", the usual SPD background
-
-std::uint64_t ipow(std::uint64_t b, int e) {
-    std::uint64_t r = 1;
-    for (int i = 0; i < e; ++i) {
-        r *= b;
-    }
-    return r;
-}
+using detail::ipow;
+using detail::pi;
+using detail::sky_blue;
 
 // ---- balls: the sphere flake, depth-first (a sphere, then each child's whole sub-flake).
 
@@ -54,7 +47,7 @@ nff::Document balls(int sf) {
 }
 
 nff::Counts balls_counts(int sf) {
-    return {flake_sphere_count(sf), 0, 1, 0, 3};
+    return {flake_sphere_count(sf), 0, 1, 0, 3, 4};
 }
 
 // ---- jacks: three crossed cylinders with spheres on their ends; a half-size copy in each octant,
@@ -107,7 +100,7 @@ nff::Document jacks(int sf) {
 
 nff::Counts jacks_counts(int sf) {
     const std::uint64_t n = (ipow(8, sf) - 1) / 7;  // jacks over all levels
-    return {6 * n, 3 * n, 0, 0, 1};
+    return {6 * n, 3 * n, 0, 0, 1, 0};
 }
 
 // ---- lattice: (SF+1)^3 shiny spheres on a unit cube lattice joined by matte cylinders.
@@ -156,7 +149,77 @@ nff::Document lattice(int sf) {
 
 nff::Counts lattice_counts(int sf) {
     const auto n = static_cast<std::uint64_t>(sf);
-    return {(n + 1) * (n + 1) * (n + 1), 3 * n * (n + 1) * (n + 1), 0, 0, 6};
+    return {(n + 1) * (n + 1) * (n + 1), 3 * n * (n + 1) * (n + 1), 0, 0, 6, 0};
+}
+
+// ---- rings: pyramid of objects of 6 pentagonal rings (cylinders joining the edge midpoints of a
+// dodecahedron, a sphere on every joint), layer k holding (k+1)^2 objects, a wall behind.
+
+std::array<Vec3d, 30> dodec_points(double minor_radius) {
+    std::array<Vec3d, 30> v;
+    const double scale_f = 1.0 / (1.0 + minor_radius);
+    for (std::size_t i = 0; i < 5; ++i) {
+        const double a = static_cast<double>(i) * 2.0 * pi / 5.0;
+        v[i] = {scale_f * std::cos(a), scale_f * std::sin(a), 0.0};
+    }
+    // The dihedral angle's supplement, about X; then 1/10 + k/5 of a turn about Z.
+    const Mat4 xm = rotate(0, 2.0 * std::acos(std::cos(pi / 3.0) / std::sin(pi / 5.0)));
+    for (std::size_t p = 1; p < 6; ++p) {
+        const Mat4 zm = rotate(2, pi * (2.0 * static_cast<double>(p - 1) + 1.0) / 5.0);
+        for (std::size_t i = 0; i < 5; ++i) {
+            v[5 * p + i] = transform_point(transform_point(v[i], xm), zm);
+        }
+    }
+    return v;
+}
+
+nff::Document rings(int sf) {
+    Writer w;
+    const double radius = 0.07412;
+    const double spread = 1.0 / std::sin(pi / 8.0);
+    const double y_diff = spread;  // SPREAD_OUT = 1 <= spread
+    const double xz_diff = 1.0;
+    w.background(sky_blue);
+    const Vec3d from{-1.0, -spread, 0.5};
+    w.view(from, {from.x, from.y + 1.0, from.z}, {0, 0, 1}, 45, 1, 512, 512);
+    w.light({3.0, -spread, 3.0});
+    w.light({-4.0, -spread, 1.0});
+    w.light({2.0, -spread, -4.0});
+    w.color({1, 1, 1}, 1, 0, 0, 0, 0);
+    const double wy = y_diff * (sf + 1);
+    const double wxz = 1.01 * (wy - from.y) * std::tan(pi / 8.0);
+    w.polygon({{wxz + from.x, wy, wxz + from.z},
+               {-wxz + from.x, wy, wxz + from.z},
+               {-wxz + from.x, wy, -wxz + from.z},
+               {wxz + from.x, wy, -wxz + from.z}});
+    const std::array<Vec3d, 6> colors{Vec3d{1, 0, 0}, Vec3d{0, 1, 0}, Vec3d{0, 0, 1},
+                                      Vec3d{0, 1, 1}, Vec3d{1, 0, 1}, Vec3d{1, 1, 0}};
+    const std::array<Vec3d, 30> dodec = dodec_points(radius);
+    for (int depth = 0; depth < sf; ++depth) {
+        for (int oz = 0; oz <= depth; ++oz) {
+            for (int ox = 0; ox <= depth; ++ox) {
+                const Vec3d offset{xz_diff * (2 * ox - depth), y_diff * (depth + 1),
+                                   xz_diff * (2 * oz - depth)};
+                for (std::size_t e = 0; e < 30; ++e) {
+                    std::size_t prev = e - 1;
+                    if (e % 5 == 0) {
+                        prev = e + 4;
+                        w.color(colors[e / 5], 0.5, 0.2, 37, 0, 0);
+                    }
+                    const Vec3d base = dodec[e] + offset;
+                    w.cone(base, radius, dodec[prev] + offset, radius);
+                    w.sphere(base, radius);
+                }
+            }
+        }
+    }
+    return w.take();
+}
+
+nff::Counts rings_counts(int sf) {
+    const auto n = static_cast<std::uint64_t>(sf);
+    const std::uint64_t objects = n * (n + 1) * (2 * n + 1) / 6;
+    return {30 * objects, 30 * objects, 1, 0, 3, 4};
 }
 
 // ---- shells: Pickover's seashell (IEEE CG&A, November 1989): spheres on a logarithmic spiral,
@@ -183,65 +246,73 @@ nff::Document shells(int sf) {
 
 nff::Counts shells_counts(int sf) {
     const long steps = shells_steps(sf);
-    return {static_cast<std::size_t>(steps / 3 - (-steps * 2 / 3) + 1), 0, 0, 0, 1};
+    return {static_cast<std::size_t>(steps / 3 - (-steps * 2 / 3) + 1), 0, 0, 0, 1, 0};
 }
 
-// ---- tetra: Sierpinski tetrahedron (Glassner 1984; Kay & Kajiya 1986): SF-1 levels of four
-// half-size tetrahedra at alternate cube corners; leaves give 4 triangles each.
+// ---- tree: Aono & Kunii's botanical tree (IEEE CG&A, May 1984): a cone per branch with a sphere
+// on its tip, two sub-branches per branch: turned by the branching angle about X and the
+// divergence about Z, contracted, moved to the tip.
 
-void tetra_recurse(Writer& w, int depth, const Vec3d& c, double half) {
-    std::vector<Vec3d> corners;
-    for (int x = -1; x <= 1; x += 2) {
-        for (int y = -1; y <= 1; y += 2) {
-            for (int z = -1; z <= 1; z += 2) {
-                if (x * y * z == 1) {
-                    corners.push_back(c + Vec3d{double(x), double(y), double(z)} *
-                                              (depth <= 1 ? half : half / 2.0));
-                }
-            }
-        }
-    }
-    if (depth > 1) {
-        for (const Vec3d& sub : corners) {
-            tetra_recurse(w, depth - 1, sub, half / 2.0);
-        }
+void grow_tree(Writer& w, const Mat4& m, const std::array<Mat4, 2>& rst, double scale, int depth) {
+    const Vec3d base = transform_point({0, 0, 0}, m);
+    const double base_r = scale * 0.15;
+    const Vec3d apex = transform_point({0, 0, 1}, m);
+    const double apex_r = base_r * 0.67;
+    w.cone(base, base_r, apex, apex_r);
+    w.sphere(apex, apex_r);
+    if (depth == 0) {
         return;
     }
-    // Face f uses corners f, f+1, f+2 (mod 4), reversed for odd f: outward winding.
-    for (int f = 0; f < 4; ++f) {
-        std::array<int, 3> o{f % 4, (f + 1) % 4, (f + 2) % 4};
-        if (f % 2 == 1) {
-            std::swap(o[0], o[2]);
-        }
-        w.polygon({corners[static_cast<std::size_t>(o[0])], corners[static_cast<std::size_t>(o[1])],
-                   corners[static_cast<std::size_t>(o[2])]});
+    for (const Mat4& r : rst) {
+        grow_tree(w, r * m, rst, scale * 0.67, depth - 1);
     }
 }
 
-nff::Document tetra(int sf) {
+nff::Document tree(int sf) {
     Writer w;
     w.background(sky_blue);
-    w.view({1.022846, -3.177154, -2.174512}, {-0.004103, -0.004103, 0.216539},
-           {-0.816497, -0.816497, 0.816497}, 45, 1, 512, 512);
-    w.light({2, -18, -5});
-    w.color({1, 0.2, 0.2}, 1, 0, 0, 0, 0);
-    tetra_recurse(w, sf, {0, 0, 0}, 1.0);
+    w.view({4.5, 0.4, 2.0}, {0, 0, 1.5}, {0, 0, 1}, 45, 1, 512, 512);
+    for (const Vec3d& l :
+         {Vec3d{-5, 5, 50}, Vec3d{30, -30, 30}, Vec3d{-40, -30, 20}, Vec3d{10, 30, 40},
+          Vec3d{-30, 40, 10}, Vec3d{50, 25, 20}, Vec3d{-10, -60, 30}}) {
+        w.light(l);
+    }
+    w.color({0.2, 0.7, 0.2}, 1, 0, 0, 0, 0);
+    w.polygon({{50, 50, 0}, {-50, 50, 0}, {-50, -50, 0}, {50, -50, 0}});
+    w.color({0.55, 0.4, 0.2}, 1, 0, 0, 0, 0);
+    std::array<Mat4, 2> rst;
+    const double branch[2] = {40.0, 25.0};
+    const double divergence[2] = {90.0, 140.0 + 90.0};
+    const double contraction[2] = {0.65, 0.70};
+    for (std::size_t i = 0; i < 2; ++i) {
+        Mat4 st = scale({contraction[i], contraction[i], contraction[i]});
+        st.m[3][2] = 1.0;
+        rst[i] = rotate(0, branch[i] * pi / 180.0) * rotate(2, divergence[i] * pi / 180.0) * st;
+    }
+    grow_tree(w, identity(), rst, 1.0, sf);
     return w.take();
 }
 
-nff::Counts tetra_counts(int sf) {
-    return {0, 0, ipow(4, sf), 0, 1};
+nff::Counts tree_counts(int sf) {
+    const std::uint64_t n = ipow(2, sf + 1) - 1;
+    return {n, n, 1, 0, 7, 4};
 }
 
 }  // namespace
 
 std::span<const Database> databases() {
-    static const std::array<Database, 5> table{{
+    static const std::array<Database, 11> table{{
         {"balls", 0, 4, 12, balls, balls_counts},
+        {"gears", 1, 4, 40, gears, gears_counts},
         {"jacks", 1, 3, 9, jacks, jacks_counts},
         {"lattice", 1, 12, 400, lattice, lattice_counts},
+        {"mount", 1, 6, 12, mount, mount_counts},
+        {"rings", 1, 7, 60, rings, rings_counts},
         {"shells", 1, 5, 20, shells, shells_counts},
+        {"sombrero", 1, 1, 9, sombrero, sombrero_counts},
+        {"teapot", 1, 6, 200, teapot, teapot_counts},
         {"tetra", 1, 6, 13, tetra, tetra_counts},
+        {"tree", 1, 11, 22, tree, tree_counts},
     }};
     return table;
 }

@@ -28,4 +28,29 @@ struct Database {
 /// The database called `name`, or nullptr.
 [[nodiscard]] const Database* find_database(std::string_view name);
 
+// The databases of polygons (spd_polygons.cpp, spd_teapot.cpp), listed in databases().
+[[nodiscard]] nff::Document gears(int sf);
+[[nodiscard]] nff::Counts gears_counts(int sf);
+[[nodiscard]] nff::Document mount(int sf);
+[[nodiscard]] nff::Counts mount_counts(int sf);
+[[nodiscard]] nff::Document sombrero(int sf);
+[[nodiscard]] nff::Counts sombrero_counts(int sf);
+[[nodiscard]] nff::Document teapot(int sf);
+[[nodiscard]] nff::Counts teapot_counts(int sf);
+[[nodiscard]] nff::Document tetra(int sf);
+[[nodiscard]] nff::Counts tetra_counts(int sf);
+
+namespace detail {
+inline constexpr double pi = 3.141592653589793238462643383279502884;
+inline const Vec3d sky_blue{0.078, 0.361, 0.753};  ///< "UNC sky blue", the usual SPD background
+/// b^e in integers.
+[[nodiscard]] inline std::uint64_t ipow(std::uint64_t b, int e) {
+    std::uint64_t r = 1;
+    for (int i = 0; i < e; ++i) {
+        r *= b;
+    }
+    return r;
+}
+}  // namespace detail
+
 }  // namespace rtlab::gen::spd

@@ -168,8 +168,8 @@ void add_gear(Scene& s, double cx, double cy, double phase, std::uint32_t materi
             {cx + inner * std::cos(a0 + 3 * step), cy + inner * std::sin(a0 + 3 * step), 0});
     }
     const Vec3d up{0, 0, height};
-    PolygonObject top{{}, material};
-    PolygonObject bottom{{}, material};
+    PolygonObject top{{}, material, {}};
+    PolygonObject bottom{{}, material, {}};
     for (int i = 0; i < n; ++i) {
         top.vertices.push_back(Vec3f(outline[static_cast<std::size_t>(i)] + up));
         bottom.vertices.push_back(Vec3f(outline[static_cast<std::size_t>(n - 1 - i)]));
@@ -179,7 +179,7 @@ void add_gear(Scene& s, double cx, double cy, double phase, std::uint32_t materi
     for (int i = 0; i < n; ++i) {
         const Vec3d& a = outline[static_cast<std::size_t>(i)];
         const Vec3d& b = outline[static_cast<std::size_t>((i + 1) % n)];
-        s.add(PolygonObject{{Vec3f(a), Vec3f(b), Vec3f(b + up), Vec3f(a + up)}, material});
+        s.add(PolygonObject{{Vec3f(a), Vec3f(b), Vec3f(b + up), Vec3f(a + up)}, material, {}});
     }
 }
 

@@ -15,17 +15,31 @@ struct SpdText {
 };
 
 // Descriptions by database, in spd::databases() order.
-constexpr std::array<SpdText, 5> spd_text{{
+constexpr std::array<SpdText, 11> spd_text{{
     {"SPD balls: the sphere flake (9 children of 1/3 radius per sphere) on a floor, 3 lights",
      "spheres = (9^(SF+1)-1)/8 (SF 4: 7381) + 1 floor polygon"},
+    {"SPD gears: SF^3 gears of 36 teeth (concave 144-gon faces, side quads) on a mirror ground",
+     "polygons = 146*SF^3 + 1 (2 faces of 144 vertices per gear), 5 lights"},
     {"SPD jacks: crossed cylinders with end spheres, a half-size copy per octant (cones: NFF only)",
      "per level k < SF: 8^k jacks of 6 spheres + 3 cylinders"},
     {"SPD lattice: (SF+1)^3 shiny spheres joined by matte cylinders (cones: NFF only), 6 lights",
      "spheres = (SF+1)^3, cylinders = 3*SF*(SF+1)^2"},
+    {"SPD mount: Carpenter's fractal mountain (the SPD's hashed Gaussian displacement) and 4 "
+     "glass spheres",
+     "triangles = 2*4^SF (SF 6: 8192) + 4 spheres, 1 light"},
+    {"SPD rings: a pyramid of 6-ring objects (cylinders and spheres; cones: NFF only), a wall",
+     "spheres = cylinders = 5*SF*(SF+1)*(2*SF+1) + 1 wall polygon, 3 lights"},
     {"SPD shells: Pickover's seashell, overlapping spheres on a logarithmic spiral",
      "spheres = 180*2^SF/3 - (-180*2^SF*2/3) + 1 (SF 1: 361)"},
+    {"SPD sombrero: a damped cosine height field, two triangles per grid cell",
+     "triangles = 2*(32*2^(SF-1)-1)^2 (SF 1: 1922)"},
+    {"SPD teapot: Newell's teapot, 32 Bezier patches in SF x SF cells of 2 triangles with vertex "
+     "normals, on a checkerboard",
+     "patches = 64*SF^2 minus the cusp triangles (SF 1: 56, SF 2: 240) + SF^2 squares"},
     {"SPD tetra: Sierpinski tetrahedron of SF-1 levels, 4 triangles per leaf",
      "triangles = 4^SF (SF 6: 4096)"},
+    {"SPD tree: Aono & Kunii's tree of cones with spheres on the tips (cones: NFF only), a field",
+     "spheres = cones = 2^(SF+1)-1 + 1 floor polygon, 7 lights"},
 }};
 
 GenCounts to_gen_counts(const nff::Counts& n, const GenOptions& o, std::size_t polygon_vertices) {
@@ -43,8 +57,7 @@ template <std::size_t I>
 GenCounts spd_counts(const GenOptions& o) {
     const spd::Database& d = spd::databases()[I];
     const nff::Counts n = d.counts(o.size);
-    // Polygon vertices: tetra's are triangles, balls has one quad; others have none yet.
-    const std::size_t verts = d.name == "tetra" ? 3 * n.polygons : 4 * n.polygons;
+    const std::size_t verts = n.vertices;
     return to_gen_counts(n, o, verts);
 }
 
@@ -74,8 +87,9 @@ Generator spd_row() {
 }  // namespace
 
 std::vector<Generator> spd_generators() {
-    static_assert(spd_text.size() == 5);
-    return {spd_row<0>(), spd_row<1>(), spd_row<2>(), spd_row<3>(), spd_row<4>()};
+    static_assert(spd_text.size() == 11);
+    return {spd_row<0>(), spd_row<1>(), spd_row<2>(), spd_row<3>(), spd_row<4>(), spd_row<5>(),
+            spd_row<6>(), spd_row<7>(), spd_row<8>(), spd_row<9>(), spd_row<10>()};
 }
 
 }  // namespace rtlab::gen

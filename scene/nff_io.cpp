@@ -260,6 +260,7 @@ Counts count(const Document& d) {
             ++c.cones;
         } else if (const auto* p = std::get_if<Polygon>(&r)) {
             ++(p->normals.empty() ? c.polygons : c.patches);
+            c.vertices += p->vertices.size();
         } else if (std::holds_alternative<Light>(r)) {
             ++c.lights;
         }

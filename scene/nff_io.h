@@ -93,6 +93,7 @@ struct Counts {
     std::size_t polygons = 0;  ///< `p` records
     std::size_t patches = 0;   ///< `pp` records
     std::size_t lights = 0;
+    std::size_t vertices = 0;  ///< over all `p` and `pp` records
 };
 
 /// Counts the primitives and lights of d.
@@ -118,8 +119,9 @@ struct Dropped {
 /// The scene of d: view -> camera (resolution, angle), background, lights with intensity
 /// 1/sqrt(n) each for n lights without colour (the SPD rule for renderers that do not scale),
 /// fills -> materials (Kd diffuse, Ks specular and mirror weight, Shine Phong exponent, T
-/// transmission, index of refraction at least 1), spheres and polygons (`pp` normals dropped) in
-/// order. Throws rtlab::Error naming `what` when the document has no view or no primitive.
+/// transmission, index of refraction at least 1), spheres and polygons in order (`pp` normals
+/// become the polygon's vertex normals). Throws rtlab::Error naming `what` when the document has no
+/// view or no primitive.
 [[nodiscard]] Scene to_scene(const Document& d, std::string_view what, Dropped* dropped = nullptr);
 
 /// The NFF document of s: view, background, lights (colour written when not 1/sqrt(n) grey), one

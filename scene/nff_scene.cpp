@@ -85,7 +85,8 @@ Scene to_scene(const Document& d, std::string_view what, Dropped* dropped) {
                 } else if constexpr (std::is_same_v<R, Cone>) {
                     ++drop.cones;
                 } else {
-                    s.add(PolygonObject{to_float(rec.vertices), current_material()});
+                    s.add(PolygonObject{to_float(rec.vertices), current_material(),
+                                        to_float(rec.normals)});
                 }
             },
             r);
@@ -156,6 +157,9 @@ Document from_scene(const Scene& s) {
                 Polygon p;
                 for (const Vec3f& q : o.vertices) {
                     p.vertices.push_back(Vec3d(q));
+                }
+                for (const Vec3f& q : o.normals) {
+                    p.normals.push_back(Vec3d(q));
                 }
                 d.records.push_back(std::move(p));
             } else if constexpr (std::is_same_v<O, MeshObject>) {
