@@ -6,6 +6,7 @@
 #include "intersect/method.h"
 #include "intersect/vec.h"
 #include "scene/prim_box.h"
+#include "scene/prim_cone.h"
 #include "scene/prim_implicit.h"
 #include "scene/prim_mesh.h"
 #include "scene/prim_obb.h"
@@ -79,7 +80,7 @@ struct Material {
 };
 
 /// Primitive types a scene can hold, in the order of the PrimTypes table below.
-enum class PrimType : std::uint8_t { sphere, mesh, polygon, box, obb, implicit };
+enum class PrimType : std::uint8_t { sphere, mesh, polygon, box, obb, implicit, cone };
 
 /// The primitive type table: one entry per PrimType, in enumerator order. An entry is a stateless
 /// struct in its own header (scene/prim_*.h) holding everything the code knows about the type:
@@ -89,7 +90,8 @@ enum class PrimType : std::uint8_t { sphere, mesh, polygon, box, obb, implicit }
 /// surface normal for the renderer), `read`/`write`/`check` (JSON through scene_io's reader,
 /// writer and path) and, for solids only, `solid_frame(o, org, dir)`. Code that depends on the
 /// type iterates this table (for_each_type) or dispatches through visit_prim_type/visit_object.
-using PrimTypes = std::tuple<SpherePrim, MeshPrim, PolygonPrim, BoxPrim, ObbPrim, ImplicitPrim>;
+using PrimTypes =
+    std::tuple<SpherePrim, MeshPrim, PolygonPrim, BoxPrim, ObbPrim, ImplicitPrim, ConePrim>;
 
 /// Number of primitive types.
 inline constexpr std::size_t prim_type_count = std::tuple_size_v<PrimTypes>;
@@ -169,6 +171,7 @@ struct Scene {
     std::vector<BoxObject> boxes;
     std::vector<ObbObject> obbs;
     std::vector<ImplicitObject> implicits;
+    std::vector<ConeObject> cones;
     std::vector<ObjectRef> order;
 
     /// Appends an object to its type's set and to `order`; returns its reference.

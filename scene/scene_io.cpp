@@ -324,7 +324,7 @@ public:
     std::string string(std::string_view key) const {
         return to_string_value(required(j_, at_, key), at_ / key);
     }
-    /// True when the object has `key`.
+    /// True when the object has the key.
     bool has(std::string_view key) const { return find(j_, key) != nullptr; }
     /// Optional number (out keeps its value when absent).
     void opt_number(std::string_view key, float& out) const { opt_float(j_, at_, key, out); }

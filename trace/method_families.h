@@ -6,6 +6,7 @@
 // list, with no edit in trace/.
 
 #include "intersect/box/methods.h"
+#include "intersect/cone/methods.h"
 #include "intersect/implicit/methods.h"
 #include "intersect/method.h"
 #include "intersect/polygon/methods.h"
@@ -55,7 +56,8 @@ using MethodFamilyTable = std::tuple<MethodFamilyEntry<"triangle", TriangleMetho
                                      MethodFamilyEntry<"obb", ObbMethods<float>>,
                                      MethodFamilyEntry<"implicit",
                                                        ImplicitMethods<Torus, float>,
-                                                       ImplicitMethods<TangleCube, float>>>;
+                                                       ImplicitMethods<TangleCube, float>>,
+                                     MethodFamilyEntry<"cone", ConeMethods<float>>>;
 
 namespace detail {
 
