@@ -93,8 +93,9 @@ int run_gen(const GenArgs& a) {
         for (const MeshObject& m : s.meshes) {
             triangles += m.mesh.triangle_count();
         }
-        std::cout << fmt::format("{}: {} spheres, {} triangles, {} polygons -> {}\n", g->name,
-                                 s.spheres.size(), triangles, s.polygons.size(), out.string());
+        std::cout << fmt::format("{}: {} spheres, {} cones, {} triangles, {} polygons -> {}\n",
+                                 g->name, s.spheres.size(), s.cones.size(), triangles,
+                                 s.polygons.size(), out.string());
     }
     return 0;
 }

@@ -20,14 +20,14 @@ constexpr std::array<SpdText, 11> spd_text{{
      "spheres = (9^(SF+1)-1)/8 (SF 4: 7381) + 1 floor polygon"},
     {"SPD gears: SF^3 gears of 36 teeth (concave 144-gon faces, side quads) on a mirror ground",
      "polygons = 146*SF^3 + 1 (2 faces of 144 vertices per gear), 5 lights"},
-    {"SPD jacks: crossed cylinders with end spheres, a half-size copy per octant (cones: NFF only)",
+    {"SPD jacks: crossed cylinders with end spheres, a half-size copy per octant",
      "per level k < SF: 8^k jacks of 6 spheres + 3 cylinders"},
-    {"SPD lattice: (SF+1)^3 shiny spheres joined by matte cylinders (cones: NFF only), 6 lights",
+    {"SPD lattice: (SF+1)^3 shiny spheres joined by matte cylinders, 6 lights",
      "spheres = (SF+1)^3, cylinders = 3*SF*(SF+1)^2"},
     {"SPD mount: Carpenter's fractal mountain (the SPD's hashed Gaussian displacement) and 4 "
      "glass spheres",
      "triangles = 2*4^SF (SF 6: 8192) + 4 spheres, 1 light"},
-    {"SPD rings: a pyramid of 6-ring objects (cylinders and spheres; cones: NFF only), a wall",
+    {"SPD rings: a pyramid of 6-ring objects (cylinders and spheres), a wall",
      "spheres = cylinders = 5*SF*(SF+1)*(2*SF+1) + 1 wall polygon, 3 lights"},
     {"SPD shells: Pickover's seashell, overlapping spheres on a logarithmic spiral",
      "spheres = 180*2^SF/3 - (-180*2^SF*2/3) + 1 (SF 1: 361)"},
@@ -38,7 +38,7 @@ constexpr std::array<SpdText, 11> spd_text{{
      "patches = 64*SF^2 minus the cusp triangles (SF 1: 56, SF 2: 240) + SF^2 squares"},
     {"SPD tetra: Sierpinski tetrahedron of SF-1 levels, 4 triangles per leaf",
      "triangles = 4^SF (SF 6: 4096)"},
-    {"SPD tree: Aono & Kunii's tree of cones with spheres on the tips (cones: NFF only), a field",
+    {"SPD tree: Aono & Kunii's tree of cones with spheres on the tips, a field",
      "spheres = cones = 2^(SF+1)-1 + 1 floor polygon, 7 lights"},
 }};
 
@@ -48,6 +48,7 @@ GenCounts to_gen_counts(const nff::Counts& n, const GenOptions& o, std::size_t p
         c.triangles = saturating_add(c.triangles, polygon_vertices);
     } else {
         c.polygons = n.polygons + n.patches;
+        c.cones = n.cones;
         c.polygon_vertices = polygon_vertices;
     }
     return c;

@@ -111,25 +111,21 @@ struct Counts {
 /// Writes d to path completely or not at all.
 void save(const Document& d, const std::filesystem::path& path);
 
-/// What to_scene could not represent.
-struct Dropped {
-    std::size_t cones = 0;  ///< cone records (no cone primitive in the scene model yet)
-};
-
 /// The scene of d: view -> camera (resolution, angle), background, lights with intensity
 /// 1/sqrt(n) each for n lights without colour (the SPD rule for renderers that do not scale),
 /// fills -> materials (Kd diffuse, Ks specular and mirror weight, Shine Phong exponent, T
-/// transmission, index of refraction at least 1), spheres and polygons in order (`pp` normals
-/// become the polygon's vertex normals). Throws rtlab::Error naming `what` when the document has no
-/// view or no primitive.
-[[nodiscard]] Scene to_scene(const Document& d, std::string_view what, Dropped* dropped = nullptr);
+/// transmission, index of refraction at least 1), spheres, cones (open: no caps) and polygons in
+/// order (`pp` normals become the polygon's vertex normals). Throws rtlab::Error naming `what` when
+/// the document has no view or no primitive.
+[[nodiscard]] Scene to_scene(const Document& d, std::string_view what);
 
 /// The NFF document of s: view, background, lights (colour written when not 1/sqrt(n) grey), one
-/// fill before each run of objects sharing a material, spheres, polygons and mesh triangles as `p
-/// 3`. Throws rtlab::Error for boxes, oriented boxes and implicit surfaces (NFF has none).
+/// fill before each run of objects sharing a material, spheres, open cones, polygons (`pp` with
+/// vertex normals) and mesh triangles as `p 3`. Throws rtlab::Error for boxes, oriented boxes,
+/// implicit surfaces and capped cones (NFF has none).
 [[nodiscard]] Document from_scene(const Scene& s);
 
-/// Loads an .nff file as a scene (cones are dropped with a note on stderr).
+/// Loads an .nff file as a scene (to_scene).
 [[nodiscard]] Scene load_scene_nff(const std::filesystem::path& path);
 
 }  // namespace rtlab::nff

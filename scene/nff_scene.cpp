@@ -3,7 +3,6 @@
 #include "scene/nff_io.h"
 
 #include <cmath>
-#include <iostream>
 #include <type_traits>
 
 namespace rtlab::nff {
@@ -34,7 +33,7 @@ std::vector<Vec3f> to_float(const std::vector<Vec3d>& v) {
 
 }  // namespace
 
-Scene to_scene(const Document& d, std::string_view what, Dropped* dropped) {
+Scene to_scene(const Document& d, std::string_view what) {
     Scene s;
     bool has_view = false;
     std::size_t plain_lights = 0;
@@ -46,7 +45,6 @@ Scene to_scene(const Document& d, std::string_view what, Dropped* dropped) {
     const float intensity =
         plain_lights > 0 ? static_cast<float>(1.0 / std::sqrt(static_cast<double>(plain_lights)))
                          : 1.0f;
-    Dropped drop;
     int material = -1;
     const auto current_material = [&] {
         if (material < 0) {  // primitives before any fill: NFF's default white matte
@@ -83,7 +81,14 @@ Scene to_scene(const Document& d, std::string_view what, Dropped* dropped) {
                     s.add(SphereObject{Vec3f(rec.center), static_cast<float>(rec.radius),
                                        current_material()});
                 } else if constexpr (std::is_same_v<R, Cone>) {
-                    ++drop.cones;
+                    ConeObject c;
+                    c.base = Vec3f(rec.base);
+                    c.base_radius = static_cast<float>(rec.base_radius);
+                    c.apex = Vec3f(rec.apex);
+                    c.apex_radius = static_cast<float>(rec.apex_radius);
+                    c.caps = ConeCaps::none;  // NFF cones are open
+                    c.material = current_material();
+                    s.add(c);
                 } else {
                     s.add(PolygonObject{to_float(rec.vertices), current_material(),
                                         to_float(rec.normals)});
@@ -95,13 +100,7 @@ Scene to_scene(const Document& d, std::string_view what, Dropped* dropped) {
         throw Error(std::string(what) + ": no view ('v' record)");
     }
     if (s.order.empty()) {
-        throw Error(std::string(what) + ": no sphere or polygon" +
-                    (drop.cones > 0
-                         ? " (its " + std::to_string(drop.cones) + " cones are not supported yet)"
-                         : std::string()));
-    }
-    if (dropped != nullptr) {
-        *dropped = drop;
+        throw Error(std::string(what) + ": no sphere, cone or polygon");
     }
     return s;
 }
@@ -162,6 +161,13 @@ Document from_scene(const Scene& s) {
                     p.normals.push_back(Vec3d(q));
                 }
                 d.records.push_back(std::move(p));
+            } else if constexpr (std::is_same_v<O, ConeObject>) {
+                if (o.caps != ConeCaps::none) {
+                    throw Error("NFF cones have no caps");
+                }
+                fill(o.material);
+                d.records.push_back(
+                    Cone{Vec3d(o.base), o.base_radius, Vec3d(o.apex), o.apex_radius});
             } else if constexpr (std::is_same_v<O, MeshObject>) {
                 fill(o.material);
                 for (const auto& t : o.mesh.triangles) {
@@ -180,13 +186,7 @@ Document from_scene(const Scene& s) {
 }
 
 Scene load_scene_nff(const std::filesystem::path& path) {
-    Dropped dropped;
-    Scene s = to_scene(load(path), path.string(), &dropped);
-    if (dropped.cones > 0) {
-        std::cerr << path.string() << ": note: " << dropped.cones
-                  << " cone records skipped (no cone primitive yet)\n";
-    }
-    return s;
+    return to_scene(load(path), path.string());
 }
 
 }  // namespace rtlab::nff

@@ -27,6 +27,7 @@ GenCounts counts_of(const Scene& s) {
         c.triangles += m.mesh.triangle_count();
     }
     c.polygons = s.polygons.size();
+    c.cones = s.cones.size();
     for (const PolygonObject& p : s.polygons) {
         c.polygon_vertices += p.vertices.size();
     }
@@ -154,6 +155,10 @@ TEST_CASE("every generator's counts match what it builds", "[datasets][generator
             o.as_mesh = as_mesh;
             o.tess = parse_sphere_tess("cube:2");
             CAPTURE(g.name, as_mesh, o.size);
+            if (as_mesh && g.counts(o).cones > 0) {
+                CHECK_THROWS_AS(generate(g, o), Error);  // cones have no tessellation yet
+                continue;
+            }
             const Scene s = generate(g, o);
             CHECK(counts_of(s) == g.counts(o));
             for (const MeshObject& m : s.meshes) {
@@ -167,9 +172,9 @@ TEST_CASE("every generator's counts match what it builds", "[datasets][generator
                 }
             }
             for (const ObjectRef& r : s.order) {
-                REQUIRE(r.index < (r.type == PrimType::sphere ? s.spheres.size()
-                                   : r.type == PrimType::mesh ? s.meshes.size()
-                                                              : s.polygons.size()));
+                const std::size_t n =
+                    visit_prim_type(r.type, [&]<class P>() { return P::objects(s).size(); });
+                REQUIRE(r.index < n);
             }
         }
     }
