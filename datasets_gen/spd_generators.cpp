@@ -44,11 +44,11 @@ constexpr std::array<SpdText, 11> spd_text{{
 
 GenCounts to_gen_counts(const nff::Counts& n, const GenOptions& o, std::size_t polygon_vertices) {
     GenCounts c = sphere_counts(n.spheres, o);
+    c.cones = n.cones;  // cones stay cones: generate() refuses --as mesh for them
     if (o.as_mesh) {
         c.triangles = saturating_add(c.triangles, polygon_vertices);
     } else {
         c.polygons = n.polygons + n.patches;
-        c.cones = n.cones;
         c.polygon_vertices = polygon_vertices;
     }
     return c;
