@@ -117,8 +117,10 @@ TriangleMesh scene_to_mesh(const Scene& s, const SphereTess& tess) {
         const bool done =
             visit_object(s, r, [&]<class P>(const auto& o) { return append_object(out, o, tess); });
         if (!done) {
-            throw Error("scene_to_mesh: " + std::string(to_string(r.type)) +
-                        " primitives cannot be tessellated (spheres, meshes and polygons can)");
+            throw Error(std::string("scene_to_mesh: ")
+                            .append(to_string(r.type))
+                            .append(" primitives cannot be tessellated (spheres, meshes and "
+                                    "polygons can)"));
         }
     }
     return out;

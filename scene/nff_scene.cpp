@@ -11,7 +11,7 @@ namespace {
 
 Material fill_material(const Fill& f, std::size_t index) {
     Material m;
-    m.name = "nff" + std::to_string(index);
+    m.name = std::string("nff").append(std::to_string(index));
     m.color = Vec3f(f.color);
     m.diffuse = static_cast<float>(f.kd);
     m.specular = static_cast<float>(f.ks);
@@ -178,7 +178,7 @@ Document from_scene(const Scene& s) {
                     d.records.push_back(std::move(p));
                 }
             } else {
-                throw Error("NFF has no " + std::string(P::name) + " primitive");
+                throw Error(std::string("NFF has no ").append(P::name).append(" primitive"));
             }
         });
     }
