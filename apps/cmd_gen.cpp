@@ -5,7 +5,9 @@
 #include "base/error.h"
 #include "datasets_gen/generators.h"
 #include "datasets_gen/memory_guard.h"
+#include "datasets_gen/spd_databases.h"
 #include "mesh/mesh_io.h"
+#include "scene/nff_io.h"
 #include "scene/scene_io.h"
 
 #include <CLI/CLI.hpp>
@@ -58,8 +60,10 @@ int run_gen(const GenArgs& a) {
     }
     const std::filesystem::path out(a.out);
     const bool mesh_file = is_mesh_path(out);
-    if (!mesh_file && out.extension() != ".json") {
-        throw Error(out.string() + ": output must be .json or a mesh file (.ply .obj .off .stl)");
+    const bool nff_file = out.extension() == ".nff";
+    if (!mesh_file && !nff_file && out.extension() != ".json") {
+        throw Error(out.string() +
+                    ": output must be .json, .nff or a mesh file (.ply .obj .off .stl)");
     }
     if (a.tess_opt->count() > 0 && !mesh_file && a.as != "mesh") {
         throw Error(
@@ -74,7 +78,19 @@ int run_gen(const GenArgs& a) {
     o.seed = a.seed;
     o.memory_limit = gen::saturating_mul(a.max_memory_mib, std::uint64_t{1} << 20);
     const Scene s = gen::generate(*g, o);
-    if (mesh_file) {
+    if (nff_file) {
+        // SPD databases are written record for record as the SPD program prints them (cones and
+        // patch normals included); other generators through their scene.
+        const gen::spd::Database* db = gen::spd::find_database(g->name);
+        const nff::Document d = db != nullptr && !o.as_mesh
+                                    ? db->document(o.size < 0 ? g->default_size : o.size)
+                                    : nff::from_scene(s);
+        nff::save(d, out);
+        const nff::Counts c = nff::count(d);
+        std::cout << fmt::format(
+            "{}: {} spheres, {} cones, {} polygons, {} patches, {} lights -> {}\n", g->name,
+            c.spheres, c.cones, c.polygons, c.patches, c.lights, out.string());
+    } else if (mesh_file) {
         const TriangleMesh m = gen::scene_to_mesh(s, o.tess);
         save_mesh(m, out);
         std::cout << fmt::format("{}: {} triangles, {} vertices -> {}\n", g->name,
@@ -85,8 +101,9 @@ int run_gen(const GenArgs& a) {
         for (const MeshObject& m : s.meshes) {
             triangles += m.mesh.triangle_count();
         }
-        std::cout << fmt::format("{}: {} spheres, {} triangles, {} polygons -> {}\n", g->name,
-                                 s.spheres.size(), triangles, s.polygons.size(), out.string());
+        std::cout << fmt::format("{}: {} spheres, {} cones, {} triangles, {} polygons -> {}\n",
+                                 g->name, s.spheres.size(), s.cones.size(), triangles,
+                                 s.polygons.size(), out.string());
     }
     return 0;
 }
@@ -110,7 +127,8 @@ Command add_gen(CLI::App& root) {
     sub->add_option("--seed", args->seed, "Seed of the random generators (default 1)");
     sub->add_option("--max-memory", args->max_memory_mib,
                     "Refuse sizes whose estimate exceeds this many MiB (default half of RAM)");
-    sub->add_option("-o,--out", args->out, "Output: .json scene or a mesh file");
+    sub->add_option("-o,--out", args->out,
+                    "Output: .json scene, .nff (NFF, as the SPD writes it) or a mesh file");
     return {sub, [args] { return run_gen(*args); }};
 }
 

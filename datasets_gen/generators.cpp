@@ -12,13 +12,17 @@
 namespace rtlab::gen {
 
 std::span<const Generator> generators() {
-    static const std::vector<Generator> table{
-        flake_generator(),          tetra_generator(),   mount_generator(),
-        shells_generator(),         gears_generator(),   soup_generator(),
-        soup_clustered_generator(), stadium_generator(), slivers_generator(),
-        intgrid_generator(),        far_generator(),     scales_generator(),
-        coplanar_generator(),       nested_generator(),
-    };
+    static const std::vector<Generator> table = [] {
+        std::vector<Generator> t = spd_generators();
+        for (const Generator& g :
+             {flake_generator(), terrain_generator(), spiral_generator(), gearbox_generator(),
+              soup_generator(), soup_clustered_generator(), stadium_generator(),
+              slivers_generator(), intgrid_generator(), far_generator(), scales_generator(),
+              coplanar_generator(), nested_generator()}) {
+            t.push_back(g);
+        }
+        return t;
+    }();
     return table;
 }
 
@@ -34,7 +38,7 @@ const Generator* find_generator(std::string_view name) {
 std::uint64_t estimate_bytes(const GenCounts& c) {
     // Measured peaks of `rtlab gen` (debug build): ~900 B per sphere and ~2.4 KiB per 23-vertex
     // polygon, dominated by the JSON document save_scene builds; ~48 B per mesh triangle.
-    std::uint64_t b = saturating_mul(c.spheres, 1024);
+    std::uint64_t b = saturating_mul(saturating_add(c.spheres, c.cones), 1024);
     b = saturating_add(b, saturating_mul(c.triangles, 64));
     b = saturating_add(b, saturating_mul(c.polygons, 256));
     return saturating_add(b, saturating_mul(c.polygon_vertices, 96));
@@ -50,6 +54,10 @@ Scene generate(const Generator& g, GenOptions o) {
                     std::to_string(g.max_size) + "]");
     }
     const std::uint64_t limit = o.memory_limit != 0 ? o.memory_limit : default_memory_limit();
+    if (o.as_mesh && g.counts(o).cones > 0) {
+        throw Error(std::string(g.name) +
+                    ": --as mesh cannot tessellate its cones yet (generate analytic primitives)");
+    }
     check_memory(std::string(g.name) + " --size " + std::to_string(o.size) +
                      (o.as_mesh ? " --tess " + o.tess.to_string() : std::string()),
                  estimate_bytes(g.counts(o)), limit);
@@ -113,9 +121,10 @@ TriangleMesh scene_to_mesh(const Scene& s, const SphereTess& tess) {
         const bool done =
             visit_object(s, r, [&]<class P>(const auto& o) { return append_object(out, o, tess); });
         if (!done) {
-            throw Error(
-                "scene_to_mesh: boxes, oriented boxes and implicit surfaces are not "
-                "supported");
+            throw Error(std::string("scene_to_mesh: ")
+                            .append(to_string(r.type))
+                            .append(" primitives cannot be tessellated (spheres, meshes and "
+                                    "polygons can)"));
         }
     }
     return out;

@@ -28,6 +28,7 @@ struct GenCounts {
     std::uint64_t triangles = 0;         ///< mesh triangles over all mesh objects
     std::uint64_t polygons = 0;          ///< polygon objects
     std::uint64_t polygon_vertices = 0;  ///< vertices over all polygons
+    std::uint64_t cones = 0;             ///< truncated cones and cylinders
     friend bool operator==(const GenCounts&, const GenCounts&) = default;
 };
 
@@ -50,12 +51,13 @@ struct Generator {
 [[nodiscard]] const Generator* find_generator(std::string_view name);
 
 /// Estimated peak bytes of generating and saving a scene with these counts (saving as JSON
-/// dominates): 1 KiB per analytic sphere, 64 B per triangle, 256 B per polygon plus 96 B per
-/// polygon vertex.
+/// dominates): 1 KiB per analytic sphere or cone, 64 B per triangle, 256 B per polygon plus 96 B
+/// per polygon vertex.
 [[nodiscard]] std::uint64_t estimate_bytes(const GenCounts& c);
 
 /// Generates a scene: resolves the default size, refuses sizes outside [min_size, max_size] and
 /// estimates over the memory limit (rtlab::Error, one line, the estimate in the message).
+/// Scenes with cones cannot be generated --as mesh yet (rtlab::Error).
 [[nodiscard]] Scene generate(const Generator& g, GenOptions o);
 
 /// Generates by name; throws rtlab::Error listing the names when there is no such generator.

@@ -60,6 +60,9 @@ void set_spd_view(Scene& s, const Vec3d& offset) {
     for (const Vec3d& p : {Vec3d{4, 3, 2}, Vec3d{1, -4, 4}, Vec3d{-3, 1, 5}}) {
         Light l;
         l.position = Vec3f(p + offset);
+        // The SPD rule for renderers that do not scale lights: 1/sqrt(n) each (n = 3).
+        const auto k = static_cast<float>(1.0 / std::sqrt(3.0));
+        l.color = {k, k, k};
         s.lights.push_back(l);
     }
 }
@@ -76,7 +79,7 @@ void add_floor(
         m.material = material;
         s.add(std::move(m));
     } else {
-        s.add(PolygonObject{corners, material});
+        s.add(PolygonObject{corners, material, {}});
     }
 }
 

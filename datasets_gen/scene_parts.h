@@ -55,7 +55,8 @@ private:
                                      float ior = 1);
 
 /// The SPD "balls" view: eye (2.1, 1.3, 1.7) looking at the origin, up +Z, 45 degree fov, three
-/// point lights at (4,3,2), (1,-4,4), (-3,1,5) and background (0.078, 0.361, 0.753).
+/// point lights at (4,3,2), (1,-4,4), (-3,1,5) of intensity 1/sqrt(3) each (the SPD rule) and
+/// background (0.078, 0.361, 0.753).
 void set_spd_view(Scene& s, const Vec3d& offset = {0, 0, 0});
 
 /// A square floor at height z spanning +-half in x and y around (cx, cy): a polygon object, or a
@@ -77,11 +78,11 @@ void add_spheres(Scene& s,
 [[nodiscard]] Camera look_at(const Vec3d& from, const Vec3d& at);
 
 // Generator rows, one per file (spd_*.cpp, stress_*.cpp).
+std::vector<Generator> spd_generators();  ///< the exact SPD databases (spd_databases.h)
 Generator flake_generator();
-Generator tetra_generator();
-Generator mount_generator();
-Generator shells_generator();
-Generator gears_generator();
+Generator terrain_generator();
+Generator spiral_generator();
+Generator gearbox_generator();
 Generator soup_generator();
 Generator soup_clustered_generator();
 Generator stadium_generator();

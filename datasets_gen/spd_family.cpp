@@ -1,5 +1,6 @@
-// SPD family beyond the flake (Haines 1987): recursive tetrahedra, fractal mountain with glass
-// spheres, a Pickover-style shell of overlapping spheres, and gears (large concave polygons).
+// Stress scenes in the spirit of the SPD family (not the SPD databases themselves, which are in
+// spd_databases.cpp): `terrain`, a seeded diamond-square fractal with glass spheres; `spiral`, a
+// Pickover-style shell of overlapping spheres; `gearbox`, gears of large concave polygons.
 #include "datasets_gen/scene_parts.h"
 
 #include <algorithm>
@@ -19,58 +20,9 @@ void set_view_around(Scene& s, const Vec3d& at, double distance) {
     s.camera = look_at(at + normalize(Vec3d{2.1, 1.3, 1.7}) * distance, at);
 }
 
-// ---- tetra: Sierpinski tetrahedron, SF-1 levels of 4 half-size corner tetrahedra; each leaf
-// tetrahedron gives its 4 faces. Triangles = 4 * 4^(SF-1) = 4^SF.
-
-void tetra_recurse(TriangleMesh& m, const std::array<Vec3d, 4>& t, int levels) {
-    if (levels == 0) {
-        const auto base = static_cast<std::uint32_t>(m.positions.size());
-        for (const Vec3d& p : t) {
-            m.positions.push_back(Vec3f(p));
-        }
-        // Face k leaves out vertex k; wind it so its normal points away from vertex k.
-        for (std::uint32_t k = 0; k < 4; ++k) {
-            std::array<std::uint32_t, 3> f{(k + 1) % 4, (k + 2) % 4, (k + 3) % 4};
-            const Vec3d n = cross(t[f[1]] - t[f[0]], t[f[2]] - t[f[0]]);
-            if (dot(n, t[k] - t[f[0]]) > 0) {
-                std::swap(f[1], f[2]);
-            }
-            m.triangles.push_back({base + f[0], base + f[1], base + f[2]});
-        }
-        return;
-    }
-    for (std::size_t c = 0; c < 4; ++c) {
-        std::array<Vec3d, 4> child;
-        for (std::size_t j = 0; j < 4; ++j) {
-            child[j] = (t[c] + t[j]) * 0.5;
-        }
-        tetra_recurse(m, child, levels - 1);
-    }
-}
-
-GenCounts tetra_counts(const GenOptions& o) {
-    GenCounts c;
-    c.triangles = saturating_pow(4, o.size);
-    return c;
-}
-
-Scene make_tetra(const GenOptions& o) {
-    Scene s;
-    set_view_around(s, {0, 0, 0}, 3.0);
-    s.materials = {make_material("tetra", {1.0f, 0.2f, 0.2f}, 0.9f, 0.0f, 1.0f, 0.0f)};
-    MeshObject obj;
-    obj.mesh.positions.reserve(saturating_pow(4, o.size));
-    obj.mesh.triangles.reserve(saturating_pow(4, o.size));
-    const double a = 1.0 / std::sqrt(3.0);  // regular tetrahedron inscribed in the unit sphere
-    tetra_recurse(obj.mesh, {Vec3d{a, a, a}, Vec3d{-a, -a, a}, Vec3d{-a, a, -a}, Vec3d{a, -a, -a}},
-                  o.size - 1);
-    s.add(std::move(obj));
-    return s;
-}
-
-// ---- mount: (2^SF+1)^2 height samples by diamond-square midpoint displacement (Fournier, Fussell
-// & Carpenter 1982) over [-1,1]^2, amplitude halved per level; triangles = 2 * 4^SF, plus 4 glass
-// spheres floating above it.
+// ---- terrain: (2^SF+1)^2 height samples by diamond-square midpoint displacement (Fournier,
+// Fussell & Carpenter 1982) over [-1,1]^2, amplitude halved per level; triangles = 2 * 4^SF, plus 4
+// glass spheres floating above it.
 
 std::vector<double> diamond_square(int n, Rng& rng) {
     const auto side = static_cast<std::size_t>(n) + 1;
@@ -151,7 +103,7 @@ Scene make_mount(const GenOptions& o) {
     return s;
 }
 
-// ---- shells: N = 2^(SF+7) overlapping spheres along a logarithmic helico-spiral (after Pickover's
+// ---- spiral: N = 2^(SF+7) overlapping spheres along a logarithmic helico-spiral (after Pickover's
 // seashells): radius and distance from the axis grow as e^(k*theta), height drops with them.
 
 GenCounts shells_counts(const GenOptions& o) {
@@ -181,7 +133,7 @@ Scene make_shells(const GenOptions& o) {
     return s;
 }
 
-// ---- gears: a 2^SF x 2^SF grid of gears with T = 16 teeth; each gear is a concave top and
+// ---- gearbox: a 2^SF x 2^SF grid of gears with T = 16 teeth; each gear is a concave top and
 // bottom polygon of 4T vertices plus 4T side quads: polygons = 4^SF * (2 + 4T) + 1 floor.
 // As a mesh every polygon is fanned from its vertex average: 4^SF * 24T + 4 triangles.
 
@@ -216,8 +168,8 @@ void add_gear(Scene& s, double cx, double cy, double phase, std::uint32_t materi
             {cx + inner * std::cos(a0 + 3 * step), cy + inner * std::sin(a0 + 3 * step), 0});
     }
     const Vec3d up{0, 0, height};
-    PolygonObject top{{}, material};
-    PolygonObject bottom{{}, material};
+    PolygonObject top{{}, material, {}};
+    PolygonObject bottom{{}, material, {}};
     for (int i = 0; i < n; ++i) {
         top.vertices.push_back(Vec3f(outline[static_cast<std::size_t>(i)] + up));
         bottom.vertices.push_back(Vec3f(outline[static_cast<std::size_t>(n - 1 - i)]));
@@ -227,7 +179,7 @@ void add_gear(Scene& s, double cx, double cy, double phase, std::uint32_t materi
     for (int i = 0; i < n; ++i) {
         const Vec3d& a = outline[static_cast<std::size_t>(i)];
         const Vec3d& b = outline[static_cast<std::size_t>((i + 1) % n)];
-        s.add(PolygonObject{{Vec3f(a), Vec3f(b), Vec3f(b + up), Vec3f(a + up)}, material});
+        s.add(PolygonObject{{Vec3f(a), Vec3f(b), Vec3f(b + up), Vec3f(a + up)}, material, {}});
     }
 }
 
@@ -260,20 +212,9 @@ Scene make_gears(const GenOptions& o) {
 
 }  // namespace
 
-Generator tetra_generator() {
-    return {"tetra",
-            "SPD tetra: Sierpinski tetrahedron of SF-1 levels, 4 faces per leaf",
-            "triangles = 4^SF (SF 5: 1024)",
-            1,
-            5,
-            15,
-            tetra_counts,
-            make_tetra};
-}
-
-Generator mount_generator() {
-    return {"mount",
-            "SPD mount: diamond-square fractal terrain (seeded) with 4 glass spheres",
+Generator terrain_generator() {
+    return {"terrain",
+            "diamond-square fractal terrain (seeded) with 4 glass spheres",
             "triangles = 2*4^SF (SF 6: 8192) + 4 spheres (4 * tess triangles as mesh)",
             0,
             6,
@@ -282,9 +223,9 @@ Generator mount_generator() {
             make_mount};
 }
 
-Generator shells_generator() {
+Generator spiral_generator() {
     return {
-        "shells",
+        "spiral",
         "Pickover-style seashell: overlapping spheres on a logarithmic helico-spiral, on a floor",
         "spheres = 2^(SF+7) (SF 4: 2048) + 1 floor polygon (2 triangles as mesh)",
         0,
@@ -303,9 +244,9 @@ Generator shells_generator() {
         make_shells};
 }
 
-Generator gears_generator() {
+Generator gearbox_generator() {
     return {
-        "gears",
+        "gearbox",
         "grid of 16-tooth gears: large concave polygons (top/bottom) plus side quads, on a floor",
         "polygons = 4^SF*66 + 1 (vertices 4^SF*384 + 4); mesh: triangles = 4^SF*384 + 4",
         0,

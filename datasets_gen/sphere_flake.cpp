@@ -1,7 +1,11 @@
 // Sphere flake (Haines, "A Proposal for Standard Graphics Environments", IEEE CG&A 1987, SPD
-// "balls"). Breadth-first generation, O(spheres) time and memory.
+// "balls"): the child offsets and the parent-to-child rotation follow balls.c's rules.
+// Breadth-first generation, O(spheres) time and memory.
 #include "datasets_gen/sphere_flake.h"
 
+#include "datasets_gen/spd_lib.h"
+
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -15,47 +19,60 @@ std::uint64_t flake_sphere_count(int sf) {
     return (pow9 - 1) / 8;
 }
 
-Vec3d flake_child_offset(int k) {
-    const double deg = std::numbers::pi / 180.0;
-    double azimuth = 0;
-    double elevation = 0;
-    if (k < 6) {
-        azimuth = (15.0 + 60.0 * k) * deg;
-    } else {
-        azimuth = (45.0 + 120.0 * (k - 6)) * deg;
-        elevation = std::asin(std::sqrt(2.0 / 3.0));
+namespace {
+
+std::array<Vec3d, 9> make_offsets() {
+    const double d = 1.0 / std::sqrt(2.0);
+    std::array<Vec3d, 3> trio{Vec3d{d, d, 0}, Vec3d{d, 0, -d}, Vec3d{0, d, -d}};
+    const spd::Mat4 tilt =
+        spd::rotate_about(normalize(Vec3d{1, -1, 0}), std::asin(2.0 / std::sqrt(6.0)));
+    for (Vec3d& t : trio) {
+        t = spd::transform_point(t, tilt);
     }
-    const double c = std::cos(elevation);
-    return {c * std::cos(azimuth), c * std::sin(azimuth), std::sin(elevation)};
+    std::array<Vec3d, 9> out;
+    for (std::size_t set = 0; set < 3; ++set) {
+        const spd::Mat4 turn =
+            spd::rotate(2, static_cast<double>(set) * 2.0 * std::numbers::pi / 3.0);
+        for (std::size_t v = 0; v < 3; ++v) {
+            out[set * 3 + v] = spd::transform_point(trio[v], turn);
+        }
+    }
+    return out;
 }
 
-void flake_frame(const Vec3d& axis, Vec3d& u, Vec3d& v) {
-    const Vec3d helper = std::abs(axis.y) > 0.9 ? Vec3d{0, 0, 1} : Vec3d{0, 1, 0};
-    u = normalize(cross(helper, axis));
-    v = cross(axis, u);
+}  // namespace
+
+Vec3d flake_child_offset(int k) {
+    static const std::array<Vec3d, 9> offsets = make_offsets();
+    return offsets[static_cast<std::size_t>(k)];
+}
+
+Vec3d flake_rotate(const Vec3d& d, const Vec3d& o) {
+    if (d.z >= 0.9999) {
+        return o;
+    }
+    if (d.z <= -0.9999) {
+        return spd::transform_point(o, spd::rotate(1, std::numbers::pi));
+    }
+    const Vec3d axis = normalize(cross(Vec3d{0, 0, 1}, d));
+    return spd::transform_point(o, spd::rotate_about(axis, std::acos(d.z)));
 }
 
 std::vector<FlakeSphere> sphere_flake(int sf) {
     std::vector<FlakeSphere> spheres;
     spheres.reserve(flake_sphere_count(sf));
     spheres.push_back({{0, 0, 0}, 0.5, {0, 0, 1}, 0, 0});
-    Vec3d offsets[9];
-    for (int k = 0; k < 9; ++k) {
-        offsets[k] = flake_child_offset(k);
-    }
     std::size_t level_begin = 0;
     for (int level = 1; level <= sf; ++level) {
         const std::size_t level_end = spheres.size();
         for (std::size_t p = level_begin; p < level_end; ++p) {
             const FlakeSphere parent = spheres[p];  // copy: push_back may reallocate
-            const double r = parent.radius / 3.0;
-            Vec3d u;
-            Vec3d v;
-            flake_frame(parent.axis, u, v);
-            for (const Vec3d& o : offsets) {
-                // Rotate the offset into the parent's frame; renormalise against rounding drift.
-                const Vec3d dir = normalize(u * o.x + v * o.y + parent.axis * o.z);
-                spheres.push_back({parent.center + dir * (parent.radius + r), r, dir,
+            const double scale = parent.radius * (1.0 + 1.0 / 3.0);
+            for (int k = 0; k < 9; ++k) {
+                // As balls.c: the child's direction is its offset from the parent over `scale`.
+                const Vec3d c =
+                    flake_rotate(parent.axis, flake_child_offset(k)) * scale + parent.center;
+                spheres.push_back({c, parent.radius / 3.0, (c - parent.center) / scale,
                                    static_cast<std::uint32_t>(p),
                                    static_cast<std::uint32_t>(level)});
             }

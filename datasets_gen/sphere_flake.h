@@ -22,17 +22,20 @@ struct FlakeSphere {
 /// Number of spheres of a flake of size factor sf: (9^(sf+1) - 1) / 8 (sf 4 -> 7381).
 [[nodiscard]] std::uint64_t flake_sphere_count(int sf);
 
-/// Unit offset of child k (0..8) in its parent's frame (+Z = parent axis): six on the equator at
-/// azimuths 15 + 60j degrees, three at elevation asin(sqrt(2/3)) at azimuths 45 + 120j degrees.
+/// Unit offset of child k (0..8) in its parent's frame (+Z = parent axis), in balls.c's order: a
+/// trio (1,1,0)/sqrt2, (1,0,-1)/sqrt2, (0,1,-1)/sqrt2 turned about (1,-1,0)/sqrt2 by
+/// asin(2/sqrt6), then the trio turned about Z by 0, 120 and 240 degrees. Three children lie at
+/// elevation asin(sqrt(2/3)) (azimuths 45, 165, 285) and six on the equator.
 [[nodiscard]] Vec3d flake_child_offset(int k);
 
-/// Orthonormal frame (u, v, axis) around a unit axis, chosen deterministically: u = normalize(Y x
-/// axis) unless |axis.y| > 0.9, then u = normalize(Z x axis); v = axis x u. For the root (+Z) this
-/// is u = +X, v = +Y, so azimuths are measured from +X towards +Y.
-void flake_frame(const Vec3d& axis, Vec3d& u, Vec3d& v);
+/// The SPD's rotation of the offset set onto a child direction d (balls.c): the minimal rotation
+/// taking +Z onto d (axis Z x d, angle acos(d.z)); identity for d.z >= 0.9999 and a half turn
+/// about Y for d.z <= -0.9999. Returns where it takes the offset o.
+[[nodiscard]] Vec3d flake_rotate(const Vec3d& d, const Vec3d& o);
 
-/// All spheres of a flake of size factor sf (0 = the root only), root first, breadth-first order;
-/// root centre (0,0,0), radius 0.5, axis +Z. Does not check memory: callers guard the size.
+/// All spheres of a flake of size factor sf (0 = the root only), root first, breadth-first order
+/// (balls.c writes them depth-first); root centre (0,0,0), radius 0.5, axis +Z. Does not check
+/// memory: callers guard the size.
 [[nodiscard]] std::vector<FlakeSphere> sphere_flake(int sf);
 
 }  // namespace rtlab::gen

@@ -4,6 +4,7 @@
 
 #include "base/atomic_file.h"
 #include "mesh/mesh_io.h"
+#include "scene/nff_io.h"
 
 #include <cctype>
 #include <charconv>
@@ -705,9 +706,12 @@ Scene load_scene(const std::filesystem::path& path) {
     for (char& ch : ext) {
         ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     }
+    if (ext == ".nff") {
+        return nff::load_scene_nff(path);
+    }
     if (ext != ".json") {
         throw Error(path.string() + ": unknown scene extension '" + path.extension().string() +
-                    "' (expected .json, .obj, .ply, .off or .stl)");
+                    "' (expected .json, .nff, .obj, .ply, .off or .stl)");
     }
     const std::string text = read_text(path);
     return parse_scene(text, path.parent_path(), path.string());

@@ -10,8 +10,9 @@
 
 namespace rtlab {
 
-/// Loads a scene: a .json scene file (mesh `file`s relative to it, loaded through mesh/) or a mesh
-/// file (.obj .ply .off .stl). Throws Error "<file>: <json path>: <problem>" on any bad input.
+/// Loads a scene: a .nff file (scene/nff_io.h), a .json scene file (mesh `file`s relative to it,
+/// loaded through mesh/) or a mesh file (.obj .ply .off .stl). Throws Error "<file>: <json path>:
+/// <problem>" on any bad input.
 Scene load_scene(const std::filesystem::path& path);
 
 /// Parses scene JSON text; `base_dir` resolves mesh files and `what` names the source in errors.

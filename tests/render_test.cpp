@@ -154,7 +154,7 @@ TEST_CASE("a checker floor pixel is the checker colour times Lambert", "[render]
     floor.diffuse = 0.7f;
     floor.texture = {TextureKind::checker, {0.1f, 0.3f, 0.8f}, 0.75f};
     s.materials.push_back(floor);
-    s.add(PolygonObject{{{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}, 0});
+    s.add(PolygonObject{{{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}, 0, {}});
 
     RenderSettings r;
     const RenderResult res = render_with(s, "bvh:binned", r);
