@@ -96,7 +96,7 @@ TEST_CASE("sweep files are validated before anything runs", "[sweep]") {
         text.replace(text.find(from), from.size(), to);
         return text;
     };
-    CHECK_THROWS_AS(load_text(bad("\"flake\", \"size\": 2", "\"teapot\"")), Error);
+    CHECK_THROWS_AS(load_text(bad("\"flake\", \"size\": 2", "\"frobnicate\"")), Error);
     CHECK_THROWS_AS(load_text(bad("\"bins\"", "\"binz\"")), Error);
     CHECK_THROWS_AS(load_text(bad("[1, 2, 8]", "[1, 0]")), Error);
     CHECK_THROWS_AS(load_text(bad("\"shadow\"", "\"umbra\"")), Error);

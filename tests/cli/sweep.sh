@@ -16,7 +16,7 @@ bad() {  # bad NAME SED-EXPRESSION: a broken copy of small.json must fail plan, 
     [[ -e $tmp/$1.dir ]] && { echo "FAIL (sweep $1): $tmp/$1.dir was created"; fail=1; }
     grep -q "$tmp/$1.json: " "$tmp/err" || { echo "FAIL (sweep $1): error does not name the file: $(cat "$tmp/err")"; fail=1; }
 }
-bad unknown-generator 's/"generator": "flake", "size": 2/"generator": "teapot"/'
+bad unknown-generator 's/"generator": "flake", "size": 2/"generator": "frobnicate"/'
 bad unknown-key 's/"max_leaf"/"max_leafs"/'
 bad out-of-range 's/\[1, 4\]/[1, 0]/'
 bad unknown-method 's/"segura_feito"/"segura"/'
