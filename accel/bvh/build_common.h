@@ -8,9 +8,17 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace rtlab::bvh_detail {
+
+/// Empty when prim_ids references every usable primitive exactly once (ids < prim_count, none
+/// twice, prim_count - unreferenced_count of them); else the first violation. Shared by the
+/// validate() of every BVH layout.
+std::string check_prim_ids(std::span<const std::uint32_t> prim_ids,
+                           std::uint32_t prim_count,
+                           std::uint32_t unreferenced_count);
 
 /// ceil(log2(n)) for n >= 1 (0 for n = 1).
 std::uint32_t ceil_log2(std::uint64_t n);

@@ -2,6 +2,8 @@
 
 #include "accel/bvh/bvh.h"
 
+#include "accel/bvh/build_common.h"
+
 #include <algorithm>
 #include <vector>
 
@@ -44,7 +46,9 @@ AccelInfo Bvh::info() const {
     return i;
 }
 
-std::string Bvh::validate() const {
+std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
+                                       std::uint32_t prim_count,
+                                       std::uint32_t unreferenced_count) {
     if (prim_ids.size() + unreferenced_count != prim_count) {
         return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
                std::to_string(prim_count - unreferenced_count);
@@ -58,6 +62,14 @@ std::string Bvh::validate() const {
             return "primitive " + std::to_string(id) + " referenced twice";
         }
         seen[id] = 1;
+    }
+    return {};
+}
+
+std::string Bvh::validate() const {
+    if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
+        !e.empty()) {
+        return e;
     }
     if (nodes.empty()) {
         return prim_ids.empty() ? std::string{} : "primitives but no nodes";

@@ -2,6 +2,8 @@
 
 #include "accel/bvh/wide_bvh.h"
 
+#include "accel/bvh/build_common.h"
+
 #include <algorithm>
 #include <limits>
 #include <vector>
@@ -60,19 +62,9 @@ AccelInfo WideBvh<N>::info() const {
 
 template <unsigned N>
 std::string WideBvh<N>::validate() const {
-    if (prim_ids.size() + unreferenced_count != prim_count) {
-        return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
-               std::to_string(prim_count - unreferenced_count);
-    }
-    std::vector<char> seen(prim_count, 0);
-    for (const std::uint32_t id : prim_ids) {
-        if (id >= prim_count) {
-            return "primitive id " + std::to_string(id) + " out of range";
-        }
-        if (seen[id]) {
-            return "primitive " + std::to_string(id) + " referenced twice";
-        }
-        seen[id] = 1;
+    if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
+        !e.empty()) {
+        return e;
     }
     if (nodes.empty()) {
         return prim_ids.empty() ? std::string{} : "primitives but no nodes";
