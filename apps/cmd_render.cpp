@@ -74,21 +74,6 @@ std::uint64_t render_bytes(std::uint64_t w, std::uint64_t h, bool spd, bool exr)
     return gen::saturating_add(grid, gen::saturating_mul(px, per_pixel));
 }
 
-/// Replaces NaN and infinite pixel components by 0 (black), so no image holds them; returns the
-/// number of pixels changed.
-std::size_t clear_non_finite(Image& img) {
-    std::size_t n = 0;
-    for (Vec3f& p : img.pixels) {
-        if (!is_finite(p)) {
-            ++n;
-            for (std::size_t c = 0; c < 3; ++c) {
-                p[c] = std::isfinite(p[c]) ? p[c] : 0.0f;
-            }
-        }
-    }
-    return n;
-}
-
 // A one-line progress bar with ETA on stderr, redrawn at most ten times a second.
 class ProgressBar {
 public:
@@ -189,9 +174,7 @@ int run_render(const RenderArgs& a) {
             rs.height > 0 ? std::uint64_t(rs.height) : std::uint64_t(scene.camera.height);
         const bool exr = std::filesystem::path(a.output).extension() == ".exr";
         gen::check_memory(fmt::format("render {}x{}", w, h), render_bytes(w, h, rs.spd, exr),
-                          a.max_memory_mib != 0
-                              ? gen::saturating_mul(a.max_memory_mib, std::uint64_t{1} << 20)
-                              : gen::default_memory_limit());
+                          gen::memory_limit_mib(a.max_memory_mib));
     }
     const RenderPlan plan = plan_render(scene, rs);
     if (a.explain) {
