@@ -32,6 +32,8 @@ void register_embree_benchmarks();
 /// issue12/trace/... and issue12/build/...: issue 12's target table (issue12_bench.cpp); only
 /// with `--suite issue12`.
 void register_issue12_benchmarks();
+/// Issue 16's two-level grid targets and cost-model rows (bench/grid2_bench.cpp).
+void register_grid2_benchmarks();
 
 /// Embree's rows of the issue-12 suite (embree_issue12.cpp); registers nothing without Embree.
 void register_issue12_embree_benchmarks();

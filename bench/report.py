@@ -20,7 +20,10 @@ missing from the run is skipped with a note.
 With --suite issue12 it runs `rtlab_bench --suite issue12` instead and writes issue 12's target
 table (measure | target | measured ratio | status, per-structure tables, the headline) between
 `<!-- issue12:begin -->` and `<!-- issue12:end -->` (bench/report_issue12.py), leaving the rest
-of the file alone.
+of the file alone. With --suite grid2 it runs `rtlab_bench --suite grid2` and writes issue 16's
+two-level grid targets, build times and predicted-against-measured cost table between
+`<!-- grid2:begin -->` and `<!-- grid2:end -->` (bench/report_grid2.py), plus
+docs/plots/cost-model-scatter.png.
 
 Example: python3 bench/report.py --bench build/release/bench/rtlab_bench --quick \\
              --out docs/results.md --plots docs/plots
@@ -38,6 +41,7 @@ import sys
 import tempfile
 import time
 
+import report_grid2
 import report_issue12
 from report_common import (
     import_pyplot,
@@ -550,8 +554,10 @@ def main():
                     help="rtlab_bench executable to run (ignored with --json)")
     ap.add_argument("--quick", action="store_true", help="pass --quick to rtlab_bench")
     ap.add_argument("--filter", default="", help="--benchmark_filter regex for rtlab_bench")
-    ap.add_argument("--suite", default="all", choices=["all", "issue12"],
-                    help="issue12: run rtlab_bench --suite issue12 and write the target table")
+    ap.add_argument("--suite", default="all", choices=["all", "issue12", "grid2"],
+                    help="issue12: run rtlab_bench --suite issue12 and write the target table; "
+                    "grid2: run --suite grid2 and write issue 16's grid and cost-model block and "
+                    "plot")
     ap.add_argument("--cpu", action="store_true",
                     help="with --suite issue12: one-thread rows timed by CPU time (shared machine)")
     ap.add_argument("--headline", action="store_true",
@@ -632,6 +638,13 @@ def main():
         if args.headline:
             print("\n".join(report_issue12.Issue12(rows, args.cpu).headline()))
         print(f"report: wrote the issue12 table into {args.out}", file=sys.stderr)
+        return 0
+    if args.suite == "grid2":
+        lines = report_grid2.section(load_rows(data),
+                                     prov_line(prov) + f" Wall time of the run: {wall}.",
+                                     args.plots, plt)
+        write_markdown(args.out, "\n".join(lines) + "\n", report_grid2.BEGIN, report_grid2.END)
+        print(f"report: wrote the grid2 block into {args.out}", file=sys.stderr)
         return 0
     os.makedirs(args.plots, exist_ok=True)
     rep = Report(load_rows(data), prov, args.out, args.plots, args.heatmaps, plt)

@@ -384,9 +384,27 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
         const std::uint32_t id = base[k];
         visit_object(scene, r, [&]<class P>(const auto& o) { P::shapes(o, id, gather); });
     }
+    if constexpr (requires { std::get<ShapeBucket<Trianglef>>(buckets.all); }) {
+        triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
+    }
     SetAdder add{setup, accel, sets_, set_methods_, build_ms_};
     std::apply([&](auto&... b) { (add(b.shapes, std::move(b.ids), clip_for(b.shapes)), ...); },
                buckets.all);
+}
+
+std::vector<std::pair<CostEstimate, double>> SceneTracer::cost_figures(const CostParams& p,
+                                                                       bool with_epo) const {
+    std::vector<std::pair<CostEstimate, double>> out;
+    for (std::size_t i = 0; i < sets_.size(); ++i) {
+        const AnyAccel& a =
+            std::visit([](const auto& set) -> const AnyAccel& { return set.accel; }, sets_[i]);
+        const bool triangles = set_methods_[i].starts_with("triangle=");
+        const double epo = with_epo && triangles && has_end_point_overlap(a)
+                               ? end_point_overlap(a, triangles_, p)
+                               : -1.0;
+        out.emplace_back(expected_cost(a), epo);
+    }
+    return out;
 }
 
 std::vector<AccelInfo> SceneTracer::infos() const {
