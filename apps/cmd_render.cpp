@@ -218,13 +218,14 @@ int run_render(const RenderArgs& a) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (rs.aov == Aov::depth && ext == ".png") {
-        // PNG holds [0, 1]: scale so the farthest hit is white (EXR keeps the distances).
+        // PNG holds [0, 1]: scale so the farthest hit is white, and mark pixels without a hit
+        // (depth_no_hit) magenta, a colour no grey depth takes (EXR keeps the distances and -1).
         float far = 0;
         for (const Vec3f& p : shown.pixels) {
             far = std::max(far, p.x);
         }
         for (Vec3f& p : shown.pixels) {
-            p = far > 0 ? p / far : p;
+            p = p.x < 0 ? Vec3f{1, 0, 1} : (far > 0 ? p / far : p);
         }
     }
     const std::size_t non_finite = clear_non_finite(shown);
@@ -336,9 +337,10 @@ Command add_render(CLI::App& root) {
             ->check(CLI::Range(0.0f, 1e6f));
     sub->add_option(
            "--aov", a->aov,
-           "What to write: color, depth (hit distance; in PNG scaled so the farthest hit is "
-           "white), normal (0.5 n + 0.5) or heatmap (nodes + primitive tests of the eye "
-           "rays per pixel, blue = min to red = max, legend bar at the bottom)")
+           "What to write: color, depth (hit distance; -1 where no sample hits; in PNG scaled so "
+           "the farthest hit is white, no hit magenta), normal (0.5 n + 0.5) or heatmap (nodes + "
+           "primitive tests of the eye "
+           "rays per pixel, blue = min to red = max, legend bar with its values at the bottom)")
         ->check(CLI::IsMember({"color", "depth", "normal", "heatmap"}));
     sub->add_option("--threads", a->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
