@@ -102,7 +102,7 @@ void register_surface() {
         }
     };
     add("closed_form", [](const Polynomial<T, 4>& p) -> std::optional<T> {
-        const RealRoots<T, 4> r = solve_closed_form(p);
+        const RealRoots<T, 4> r = solve_closed_form_unit(p);
         T u;
         return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
     });
