@@ -174,10 +174,13 @@ int run_render(const RenderArgs& a) {
     rs.spd = a.spd;
     rs.all_features = a.all_features;
     if (a.spd) {
-        // The SPD rules: 512 x 512 and depth 5 unless the user says otherwise.
+        // The SPD rules: 512 x 512 and a maximum tree depth of 5 "where the eye ray is of depth
+        // 1" (SPD README, testing procedure 7), i.e. 4 here, where eye rays are depth 0, unless
+        // the user says otherwise. With 5 here balls made 7% more reflection rays than the SPD
+        // publishes; with 4 its eye, reflection and shadow counts are within 0.5%.
         rs.width = a.width_opt->count() > 0 ? a.width : 512;
         rs.height = a.height_opt->count() > 0 ? a.height : 512;
-        rs.max_depth = a.depth_opt->count() > 0 ? a.max_depth : 5;
+        rs.max_depth = a.depth_opt->count() > 0 ? a.max_depth : 4;
     }
 
     const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
@@ -348,9 +351,11 @@ Command add_render(CLI::App& root) {
     sub->add_option("--max-memory", a->max_memory_mib,
                     "Refuse image sizes whose estimate exceeds this many MiB (default half of "
                     "RAM)");
-    sub->add_flag("--spd", a->spd,
-                  "SPD mode: 512x512 from rays through the 513x513 pixel corners (each pixel the "
-                  "mean of its 4 corners), max depth 5");
+    sub->add_flag(
+        "--spd", a->spd,
+        "SPD mode: 512x512 from rays through the 513x513 pixel corners (each pixel the "
+        "mean of its 4 corners), the SPD's maximum tree depth 5 counting the eye ray as 1 "
+        "(--max-depth 4)");
     sub->add_flag("--explain", a->explain,
                   "Print each feature (enabled or not, and why) and the integrator instance; "
                   "renders too when -o is given");
