@@ -197,19 +197,21 @@ def _crosscheck_section(lines, plt, plots, cases, prov):
     if not xs:
         return
     lines += ["## Cross-checks against the exact oracle", "",
-              "One row per method and precision (`rtlab crosscheck`): rays whose hit/miss answer "
-              "equals CGAL's exact one, false hits and misses, relative error of t over rays both "
-              "call a hit, ns per test (single thread, set-up excluded).", "",
-              "| prim | method | precision | rays | agree | false hit | false miss | max rel t | "
-              "median rel t | ns/test |",
-              "|---|---|---|---|---|---|---|---|---|---|"]
+              "One row per method and precision (`rtlab crosscheck`): rays whose answer is the "
+              "exact one (CGAL: same hit/miss and, for hits, t within the stated relative "
+              "tolerance), hits with t beyond it (wrong surface), false hits and misses, relative "
+              "error of t over rays both call a hit, ns per test (single thread, set-up "
+              "excluded).", "",
+              "| prim | method | precision | rays | agree | wrong t | false hit | false miss | "
+              "max rel t | median rel t | ns/test |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for c in xs:
         if c["status"] != "done":
             lines.append(f"| {c['prim']} | {c['methods']} | {c['kind']} | failed: "
-                         f"{c.get('error', '?')} | | | | | | |")
+                         f"{c.get('error', '?')} | | | | | | | |")
             continue
         lines.append(f"| {c['prim']} | {c['methods']} | {c['kind']} | {c['rays']} | {c['agree']} | "
-                     f"{c['false_hit']} | {c['false_miss']} | {fmt(c.get('max_rel_t_err'))} | "
+                     f"{c.get('wrong_t', '-')} | {c['false_hit']} | {c['false_miss']} | {fmt(c.get('max_rel_t_err'))} | "
                      f"{fmt(c.get('median_rel_t_err'))} | {fmt(c['ns_per_test'])} |")
     lines.append("")
     if not plots or plt is None:

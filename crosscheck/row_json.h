@@ -15,6 +15,8 @@ inline nlohmann::json row_json(const Row& r) {
             {"set", r.set},
             {"rays", r.rays},
             {"agree", r.agree},
+            {"wrong_t", r.wrong_t},
+            {"t_tol", r.t_tol},
             {"false_hit", r.false_hit},
             {"false_miss", r.false_miss},
             {"max_rel_t_err", r.max_rel_t_err},
