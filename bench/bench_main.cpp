@@ -26,11 +26,17 @@ constexpr std::string_view own_flags =
     "  --suite NAME   all (default: every suite below but issue12) or issue12 (issue 12's target\n"
     "                 table: SF 4 tessellated flake with floor, SF 4 and SF 5 analytic, 1 and 2\n"
     "                 threads, Embree medium and high; bench/report.py --suite issue12 writes\n"
-    "                 it into docs/results.md; with --quick sizes 2 and 3)\n\n";
+    "                 it into docs/results.md; with --quick sizes 2 and 3) or kdtree (issue 16's\n"
+    "                 kd-tree targets: kdtree:sah against the binary BVHs, interleaved in one\n"
+    "                 process, one thread; bench/report_kdtree.py makes the table)\n\n";
 }  // namespace
 
 bool rtlab::bench::quick_mode() {
     return quick;
+}
+
+bool rtlab::bench::specs_named() {
+    return !specs.empty();
 }
 
 std::vector<std::string> rtlab::bench::bench_specs() {
@@ -55,9 +61,9 @@ int main(int argc, char** argv) {
                 quick = true;
             } else if (arg == "--suite" && i + 1 < argc) {
                 suite = argv[++i];
-                if (suite != "all" && suite != "issue12") {
-                    throw std::invalid_argument("--suite must be all or issue12, not '" + suite +
-                                                "'");
+                if (suite != "all" && suite != "issue12" && suite != "kdtree") {
+                    throw std::invalid_argument("--suite must be all, issue12 or kdtree, not '" +
+                                                suite + "'");
                 }
             } else if (arg == "--accel" && i + 1 < argc) {
                 specs.push_back(rtlab::parse_accel_spec(argv[++i]).canonical());
@@ -77,6 +83,8 @@ int main(int argc, char** argv) {
     argc = kept;
     if (suite == "issue12") {
         rtlab::bench::register_issue12_benchmarks();
+    } else if (suite == "kdtree") {
+        rtlab::bench::register_kdtree_benchmarks();
     } else {
         rtlab::bench::register_intersect_benchmarks();
         rtlab::bench::register_roots_benchmarks();
