@@ -2,14 +2,17 @@
 // table). Every figure is taken side by side in one process, interleaved, so a loaded machine
 // slows all contenders alike:
 //   kdtree/trace/<scene>/<kind>: the contenders (kd_contenders(), or --accel) traced in turn on
-//       the same rays, one thread, `rounds` rounds; each sample is one pass over the ray set.
+//       the same rays, one thread, `rounds` rounds; each sample is the calling thread's CPU time
+//       (so other processes on a loaded machine do not count) of enough passes over the ray set
+//       to last sample_seconds().
 //       Counters per contender: "<spec>|Mrays/s" (median of the rounds), "<spec>|nodes/ray" and
 //       "<spec>|prims/ray" (a separate counting pass); per kd-tree row "<spec>|ratio": its
 //       Mrays/s over the best binary BVH's ("bvh:" rows) of the same benchmark.
-//   kdtree/build/<scene>/threads:<k>: build times of the same contenders from the scene's
-//       triangle bounds and SceneTracer's exact triangle clip (kd-tree perfect splits), TBB
-//       limited to k threads, interleaved; "<spec>|build_ms" (median) and, per kd-tree row,
-//       "<spec>|build_ratio" over bvh:binned's.
+//   kdtree/build/<scene>/threads:<k>: build times of the kd-tree and binned BVH contenders from
+//       the scene's triangle bounds and SceneTracer's exact triangle clip (kd-tree perfect
+//       splits), TBB limited to k threads, interleaved (one thread: CPU time of the calling
+//       thread, which runs the whole build; two: wall time); "<spec>|build_ms" (median) and,
+//       per kd-tree row, "<spec>|build_ratio" over bvh:binned's.
 // Scenes: the tessellated flake SF 3 and SF 4 with its floor (flake_meshfloor3/4) and the analytic
 // flake SF 4 (flake_spheres4); --quick uses flake_meshfloor2 and flake_spheres2.
 #include "accel/any_accel.h"
@@ -21,6 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <map>
 #include <memory>
 #include <string>
@@ -64,6 +68,11 @@ int rounds() {
     return quick_mode() ? 3 : 7;
 }
 
+/// Least CPU time of one sample: short ray sets are traced several times per sample.
+double sample_seconds() {
+    return quick_mode() ? 0.01 : 0.05;
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
@@ -91,6 +100,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// CPU seconds of the calling thread: with TBB limited to one thread the tracer runs on it, and
+/// time the machine gives to other processes is not counted (this machine is shared).
+double thread_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 void bm_trace(benchmark::State& state, const std::string& scene, RayKind kind) {
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
     const auto& ts = tracers(scene);
@@ -108,15 +125,21 @@ void bm_trace(benchmark::State& state, const std::string& scene, RayKind kind) {
         }
     };
     std::vector<std::vector<double>> secs(ts.size());
+    std::vector<int> reps(ts.size(), 1);
     for (auto _ : state) {
-        for (const auto& t : ts) {
-            pass(*t, nullptr);  // warm-up
+        for (std::size_t i = 0; i < ts.size(); ++i) {  // warm-up; sets passes per sample
+            const double t0 = thread_seconds();
+            pass(*ts[i], nullptr);
+            const double s = std::max(thread_seconds() - t0, 1e-6);
+            reps[i] = std::max(1, static_cast<int>(sample_seconds() / s));
         }
         for (int r = 0; r < rounds(); ++r) {
             for (std::size_t i = 0; i < ts.size(); ++i) {
-                const auto t0 = std::chrono::steady_clock::now();
-                pass(*ts[i], nullptr);
-                secs[i].push_back(seconds_since(t0));
+                const double t0 = thread_seconds();
+                for (int k = 0; k < reps[i]; ++k) {
+                    pass(*ts[i], nullptr);
+                }
+                secs[i].push_back((thread_seconds() - t0) / static_cast<double>(reps[i]));
             }
         }
     }
@@ -158,7 +181,13 @@ void bm_build(benchmark::State& state, const std::string& scene, int threads) {
     const ClipFn clip = [&tris](std::uint32_t i, const Bounds3f& box) {
         return clip_shape_bounds(tris[i], box);
     };
-    const std::vector<std::string> specs = kd_contenders();
+    // The kd-trees against the binned builders (the reference is bvh:binned).
+    std::vector<std::string> specs;
+    for (const std::string& spec : kd_contenders()) {
+        if (is_kdtree(spec) || spec.starts_with("bvh:binned") || spec.starts_with("bvh:pbinned")) {
+            specs.push_back(spec);
+        }
+    }
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
     std::vector<std::vector<double>> ms(specs.size());
@@ -166,9 +195,11 @@ void bm_build(benchmark::State& state, const std::string& scene, int threads) {
     for (auto _ : state) {
         for (int r = 0; r < (quick_mode() ? 1 : 3); ++r) {
             for (std::size_t i = 0; i < specs.size(); ++i) {
-                const auto t0 = std::chrono::steady_clock::now();
+                const auto w0 = std::chrono::steady_clock::now();
+                const double c0 = thread_seconds();
                 AnyAccel a = build_accel(specs[i], BuildInput{bounds, clip});
-                ms[i].push_back(1e3 * seconds_since(t0));
+                // One thread: the calling thread's CPU time; two: wall time.
+                ms[i].push_back(1e3 * (threads == 1 ? thread_seconds() - c0 : seconds_since(w0)));
                 info[i] = accel_info(a);
                 benchmark::DoNotOptimize(a);
             }
