@@ -89,6 +89,12 @@ const ParamSpec min_leaf = integer_param("min_leaf",
                                          1,
                                          1024,
                                          "nodes with at most this many primitives become leaves");
+const ParamSpec perfect = integer_param("perfect",
+                                        kd_default.perfect_splits ? 1 : 0,
+                                        0,
+                                        1,
+                                        "1: perfect splits (straddling triangles clipped to each "
+                                        "side; slower build), 0: boxes cut at the plane");
 const ParamSpec density = real_param("density",
                                      static_cast<double>(grid_default.density),
                                      1e-3,
@@ -131,6 +137,8 @@ KdTree::Config kd_config(const AccelSpec& s) {
     c.empty_bonus = static_cast<float>(s.value_or("empty_bonus", c.empty_bonus));
     c.max_depth = as_u32(s.value_or("max_depth", c.max_depth));
     c.min_leaf_size = as_u32(s.value_or("min_leaf", c.min_leaf_size));
+    c.perfect_splits = s.value_or("perfect", c.perfect_splits ? 1 : 0) != 0;
+    c.threads = as_u32(s.value_or("threads", c.threads));
     return c;
 }
 
@@ -237,12 +245,12 @@ const AccelEntry registry_rows[] = {
      {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &wide_row<8>},
     {"kdtree:sah",
-     "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006)",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
      &row<build_kdtree_sah, kd_config>},
     {"kdtree:median",
      "kd-tree, spatial median of the longest axis, SAH termination",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect},
      &row<build_kdtree_median, kd_config>},
     {"grid:uniform",
      "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",
