@@ -20,8 +20,8 @@ const std::vector<std::string> columns{
     "width", "height", "depth", "render_ms", "eye_rays", "shadow_rays", "reflected_rays",
     "refracted_rays", "image", "image_hash", "non_finite_pixels",
     // cross-check cases (methods = the method, kind = the precision)
-    "prim", "agree", "wrong_t", "t_tol", "false_hit", "false_miss", "max_rel_t_err", "median_rel_t_err", "has_setup",
-    "setup_ns_per_ray", "ns_per_test", "error"};
+    "prim", "agree", "wrong_t", "t_tol", "false_hit", "false_miss", "max_rel_t_err",
+    "median_rel_t_err", "has_setup", "setup_ns_per_ray", "ns_per_test", "error"};
 const std::vector<std::string> prov_columns{"git",   "version", "build",     "compiler",
                                             "host",  "cpu",     "slurm_job", "slurm_task",
                                             "start", "end",     "seed",      "threads_used"};
