@@ -15,7 +15,7 @@ const std::vector<std::string> columns{
     "case", "index", "status", "type", "scene", "scene_key", "structure", "spec", "methods", "sets",
     "kind", "query", "threads", "ray_count", "repeat", "primitives", "rays", "hits", "build_ms",
     "trace_ms", "mrays_per_s", "accel_bytes", "bytes_per_prim", "nodes", "leaves", "max_depth",
-    "sah_cost", "nodes_per_ray", "prims_per_ray",
+    "sah_cost", "nodes_per_ray", "prims_per_ray", "cost_model", "measured_cost",
     // render cases (kind = AOV)
     "width", "height", "depth", "render_ms", "eye_rays", "shadow_rays", "reflected_rays",
     "refracted_rays", "image", "image_hash", "non_finite_pixels",

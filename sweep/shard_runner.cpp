@@ -173,6 +173,8 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
     if (m.has_stats) {
         j["nodes_per_ray"] = m.nodes_per_ray;
         j["prims_per_ray"] = m.prims_per_ray;
+        j["cost_model"] = m.cost_model;
+        j["measured_cost"] = m.measured_cost;
     }
 }
 
