@@ -211,7 +211,8 @@ def _crosscheck_section(lines, plt, plots, cases, prov):
                          f"{c.get('error', '?')} | | | | | | | |")
             continue
         lines.append(f"| {c['prim']} | {c['methods']} | {c['kind']} | {c['rays']} | {c['agree']} | "
-                     f"{c.get('wrong_t', '-')} | {c['false_hit']} | {c['false_miss']} | {fmt(c.get('max_rel_t_err'))} | "
+                     f"{c.get('wrong_t', '-') if c.get('max_rel_t_err') is not None else '-'} | "
+                     f"{c['false_hit']} | {c['false_miss']} | {fmt(c.get('max_rel_t_err'))} | "
                      f"{fmt(c.get('median_rel_t_err'))} | {fmt(c['ns_per_test'])} |")
     lines.append("")
     if not plots or plt is None:
