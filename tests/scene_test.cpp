@@ -158,9 +158,9 @@ TEST_CASE("scene errors name the file and the JSON path", "[scene][io][errors]")
     };
     const std::vector<Case> cases{
         {objects(R"({"type": "sphere", "center": [0, 0, 0], "radius": -2})"),
-         "objects[1].radius: must be finite and > 0"},
+         "objects[1].radius: must be > 0"},
         {objects(R"({"type": "sphere", "center": [0, 0, 0], "radius": 0})"),
-         "objects[1].radius: must be finite and > 0"},
+         "objects[1].radius: must be > 0"},
         {objects(R"({"type": "sphere", "center": [0, 0], "radius": 1})"),
          "objects[1].center: must be an array of 3 numbers"},
         {objects(R"({"type": "sphere", "center": [0, "a", 0], "radius": 1})"),

@@ -9,13 +9,19 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
+#include <unistd.h>
 
 using namespace rtlab;
 
 namespace {
 
 sweep::SweepFile load_text(const std::string& text) {
-    const auto file = std::filesystem::temp_directory_path() / "rtlab_sweep_plan_test.json";
+    // CTest runs the test cases as parallel processes: one file per process and call.
+    static int calls = 0;
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("rtlab_sweep_plan_test-" + std::to_string(::getpid()) + "-" +
+                       std::to_string(calls++) + ".json");
     {
         std::ofstream out(file);
         out << text;

@@ -295,8 +295,8 @@ std::string TwoLevelGrid::validate() const {
     }
     std::vector<bool> seen(prim_present.size());
     for (std::size_t c = 0; c + 1 < cell_start.size(); ++c) {
-        if (cell_start[c] > cell_start[c + 1]) {
-            return "CSR offsets decrease at cell " + std::to_string(c);
+        if (cell_start[c] > cell_start[c + 1] || cell_start[c + 1] > cell_prims.size()) {
+            return "CSR offsets decrease or pass the references at cell " + std::to_string(c);
         }
         for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
             const std::uint32_t id = cell_prims[k];
