@@ -10,14 +10,14 @@
 namespace rtlab {
 
 // The builder functions, one .cpp each (the row below is the only other place that names them).
-Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg);
-Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg);
-Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg);
-Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg);
+Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
+Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
+Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
+Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
 KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
-Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg);
+Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg, std::uint32_t threads);
 TwoLevelGrid build_grid_two_level(const BuildInput& in,
                                   const TwoLevelGridConfig& cfg,
                                   std::uint32_t threads);
@@ -153,32 +153,29 @@ std::uint32_t threads_of(const AccelSpec& s) {
     return as_u32(s.value_or("threads", 0));
 }
 
-AnyAccel grid2_row(const BuildInput& in, const AccelSpec& s) {
+TwoLevelGridConfig grid2_config(const AccelSpec& s) {
     TwoLevelGridConfig c;
     c.top_density = static_cast<float>(s.value_or("top_density", c.top_density));
     c.leaf_density = static_cast<float>(s.value_or("leaf_density", c.leaf_density));
     c.max_res = as_u32(s.value_or("max_res", c.max_res));
-    return build_grid_two_level(in, c, threads_of(s));
-}
-
-AnyAccel pbinned_row(const BuildInput& in, const AccelSpec& s) {
-    return build_bvh_binned_parallel(in, bvh_config(s), threads_of(s));
+    return c;
 }
 
 /// The binary tree a layout row converts: built by the builder its `from` parameter names.
 Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
     const Bvh::Config c = bvh_config(s);
+    const std::uint32_t t = threads_of(s);
     switch (static_cast<int>(s.value("from"))) {
     case 0:
-        return build_bvh_binned_parallel(in, c, threads_of(s));
+        return build_bvh_binned_parallel(in, c, t);
     case 1:
-        return build_bvh_binned_sah(in, c);
+        return build_bvh_binned_sah(in, c, t);
     case 2:
-        return build_bvh_sweep_sah(in, c);
+        return build_bvh_sweep_sah(in, c, t);
     case 3:
-        return build_bvh_lbvh(in, c);
+        return build_bvh_lbvh(in, c, t);
     default:
-        return build_bvh_median(in, c);
+        return build_bvh_median(in, c, t);
     }
 }
 
@@ -190,6 +187,12 @@ AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
 template <auto B, auto ToConfig>
 AnyAccel row(const BuildInput& in, const AccelSpec& s) {
     return B(in, ToConfig(s));
+}
+
+/// A parallel builder's row: B also gets the spec's `threads`.
+template <auto B, auto ToConfig>
+AnyAccel threaded_row(const BuildInput& in, const AccelSpec& s) {
+    return B(in, ToConfig(s), threads_of(s));
 }
 
 const ParamSpec leaves = choice_param("leaves",
@@ -214,28 +217,28 @@ const AccelEntry registry_rows[] = {
     {"brute", "brute force: every primitive box per ray (the reference)", {}, &brute_row},
     {"bvh:median",
      "binary BVH, object median on the largest centroid axis",
-     {max_leaf},
-     &row<build_bvh_median, bvh_config>},
+     {max_leaf, threads},
+     &threaded_row<build_bvh_median, bvh_config>},
     {"bvh:binned",
      "binary BVH, binned SAH (Wald 2007)",
-     {max_leaf, bins, bvh_ct, bvh_ci},
-     &row<build_bvh_binned_sah, bvh_config>},
+     {max_leaf, bins, bvh_ct, bvh_ci, threads},
+     &threaded_row<build_bvh_binned_sah, bvh_config>},
     {"bvh:pbinned",
      "binary BVH, binned SAH on all axes in one pass, parallel with TBB, deterministic",
      {max_leaf, bins, bvh_ct, bvh_ci, threads},
-     &pbinned_row},
+     &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
      {from, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
-     {max_leaf, bvh_ct, bvh_ci},
-     &row<build_bvh_sweep_sah, bvh_config>},
+     {max_leaf, bvh_ct, bvh_ci, threads},
+     &threaded_row<build_bvh_sweep_sah, bvh_config>},
     {"bvh:lbvh",
      "binary BVH, Morton-code radix tree (Karras 2012)",
-     {max_leaf, morton_bits},
-     &row<build_bvh_lbvh, bvh_config>},
+     {max_leaf, morton_bits, threads},
+     &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
      {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
@@ -249,18 +252,18 @@ const AccelEntry registry_rows[] = {
      {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
      &row<build_kdtree_sah, kd_config>},
     {"kdtree:median",
-     "kd-tree, spatial median of the longest axis, SAH termination",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect},
+     "kd-tree, spatial median of the longest axis, SAH termination, parallel with TBB",
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
      &row<build_kdtree_median, kd_config>},
     {"grid:uniform",
      "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",
-     {density, max_res},
-     &row<build_grid_uniform, grid_config>},
+     {density, max_res, threads},
+     &threaded_row<build_grid_uniform, grid_config>},
     {"grid:two_level",
      "two-level grid: coarse top grid, a Woo-sized grid in each non-empty top cell over the part "
      "its primitives cover (Kalojanov et al. 2011), 3D-DDA in both levels, parallel build",
      {top_density, leaf_density, grid2_max_res, threads},
-     &grid2_row},
+     &threaded_row<build_grid_two_level, grid2_config>},
 };
 
 }  // namespace

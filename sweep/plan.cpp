@@ -2,6 +2,7 @@
 #include "sweep/plan.h"
 
 #include "base/error.h"
+#include "base/fnv1a.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -12,14 +13,10 @@ namespace rtlab::sweep {
 
 namespace {
 
-// FNV-1a, 64 bits (Fowler, Noll, Vo): stable across runs, builds and machines.
 std::uint64_t fnv1a(const std::string& text) {
-    std::uint64_t h = 14695981039346656037ull;
-    for (const char c : text) {
-        h ^= static_cast<unsigned char>(c);
-        h *= 1099511628211ull;
-    }
-    return h;
+    Fnv1a h;
+    h.add(text);
+    return h.value();
 }
 
 // Gives c its id from `what` and appends it; throws when two cases measure the same.

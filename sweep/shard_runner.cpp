@@ -4,6 +4,7 @@
 #include "accel/any_accel.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/fnv1a.h"
 #include "crosscheck/crosscheck.h"
 #include "crosscheck/row_json.h"
 #include "datasets_gen/generators.h"
@@ -15,8 +16,8 @@
 #include "trace/ray_gen.h"
 #include "trace/scene_tracer.h"
 
+#include <bit>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
@@ -181,19 +182,13 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
 // FNV-1a over the pixels' float bits: equal images give equal hashes (a render is the same for
 // any thread count), so runs on different machines or schedulers compare case for case.
 std::string image_hash(const Image& img) {
-    std::uint64_t h = 14695981039346656037ull;
+    Fnv1a h;
     for (const Vec3f& p : img.pixels) {
         for (std::size_t k = 0; k < 3; ++k) {
-            const float v = p[k];
-            std::uint32_t bits = 0;
-            std::memcpy(&bits, &v, sizeof bits);
-            for (int b = 0; b < 4; ++b) {
-                h ^= (bits >> (8 * b)) & 0xffu;
-                h *= 1099511628211ull;
-            }
+            h.add_u32(std::bit_cast<std::uint32_t>(p[k]));
         }
     }
-    return fmt::format("{:016x}", h);
+    return fmt::format("{:016x}", h.value());
 }
 
 // Renders case c into DIR/images/<id>.png (.exr for depth, which keeps the distances) and

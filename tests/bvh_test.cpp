@@ -297,6 +297,21 @@ TEST_CASE("parallel binned SAH builds the same tree for 1, 2 and 4 threads", "[a
     CHECK(par <= seq * 1.05);
 }
 
+TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[accel][bvh]") {
+    // 20000 primitives: nodes above TopDown::parallel_min (4096) build their children as tasks.
+    const std::string row =
+        GENERATE(as<std::string>{}, "bvh:median", "bvh:binned", "bvh:sweep", "bvh:lbvh");
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    CAPTURE(row, static_cast<int>(kind));
+    const test::Soup soup = test::random_soup(kind, 31, 20000);
+    const Bvh one = build_with(soup.boxes, row, 4, ",threads=1");
+    check_layout(one, soup.boxes);
+    for (const int threads : {2, 4, 0}) {
+        CAPTURE(threads);
+        CHECK(one == build_with(soup.boxes, row, 4, ",threads=" + std::to_string(threads)));
+    }
+}
+
 TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[accel][bvh]") {
     const std::string from = GENERATE("pbinned", "binned", "sweep", "lbvh", "median");
     const auto count = GENERATE(0u, 1u, 2u, 5u, 1000u);

@@ -94,6 +94,19 @@ TEST_CASE("grid agrees with brute force", "[accel][grid]") {
     test::check_agrees_with_brute_force(grid, soup, rays);
 }
 
+TEST_CASE("uniform grid does not depend on the thread count", "[accel][grid]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 13, 20000);
+    BuildInput in = soup.input();
+    in.clip = [&soup](std::uint32_t id, const Bounds3f& box) {
+        return intersection(soup.boxes[id], box);
+    };
+    const Grid one = build_grid(in, "grid:uniform,threads=1");
+    REQUIRE(one.validate().empty());
+    CHECK(one == build_grid(in, "grid:uniform,threads=2"));
+    CHECK(one == build_grid(in, "grid:uniform,threads=4"));
+    CHECK(one == build_grid(in));
+}
+
 TEST_CASE("grid handles primitives and rays on cell boundaries", "[accel][grid]") {
     // Boxes whose faces lie exactly on the cell planes of a 4 x 4 x 4 grid over [0, 4]^3, flat
     // boxes in those planes, duplicates and corner points.

@@ -184,7 +184,8 @@ TEST_CASE("kd-tree events sort as their integers, ties in primitive order", "[ac
     CHECK(event_prim(make_event(1.0f, event_planar, KdNode::max_index)) == KdNode::max_index);
 }
 
-TEST_CASE("kd-tree SAH build is the same tree for any thread count", "[accel][kdtree]") {
+TEST_CASE("kd-tree SAH and median builds are the same tree for any thread count",
+          "[accel][kdtree]") {
     // Large enough for parallel subtree tasks (nodes of 4096 primitives and more).
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
     const std::string perfect = GENERATE(as<std::string>{}, ",perfect=1", ",perfect=0");
@@ -197,6 +198,10 @@ TEST_CASE("kd-tree SAH build is the same tree for any thread count", "[accel][kd
     CHECK(one == build_kd("kdtree:sah,threads=2" + perfect, in));
     CHECK(one == build_kd("kdtree:sah,threads=4" + perfect, in));
     CHECK(one == build_kd("kdtree:sah" + perfect, in));
+    const KdTree median = build_kd("kdtree:median,threads=1" + perfect, in);
+    REQUIRE(median.validate().empty());
+    CHECK(median == build_kd("kdtree:median,threads=2" + perfect, in));
+    CHECK(median == build_kd("kdtree:median,threads=4" + perfect, in));
     test::check_agrees_with_brute_force(one, soup, test::random_rays(soup, 23, 300));
 }
 

@@ -10,6 +10,7 @@
 // tree. Cost: O(N log N) work, O(N) memory besides the tree.
 
 #include "accel/bvh/build_common.h"
+#include "base/thread_arena.h"
 
 #include <algorithm>
 #include <limits>
@@ -17,7 +18,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 #include <vector>
 
@@ -645,11 +645,7 @@ private:
 /// the thread count.
 Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     Builder b(in, bvh_detail::clamped(cfg));
-    if (threads == 0) {
-        return b.run();
-    }
-    tbb::task_arena arena(static_cast<int>(threads));
-    return arena.execute([&] { return b.run(); });
+    return with_threads(threads, [&] { return b.run(); });
 }
 
 }  // namespace rtlab

@@ -1,12 +1,14 @@
 // Binned SAH (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"): bins
 // of equal width over the node's centroid bounds on each axis, a split between bins chosen by the
 // SAH; leaf when the SAH prefers it and the range fits in max_leaf_size. A range whose centroids
-// coincide (or bin_count == 1) falls back to the object median. Cost: O(N log N).
+// coincide (or bin_count == 1) falls back to the object median. Cost: O(N log N); subtrees in
+// parallel with `threads`.
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <limits>
+#include <tbb/enumerable_thread_specific.h>
 #include <vector>
 
 namespace rtlab {
@@ -30,13 +32,20 @@ std::uint32_t bin_of(float c, float lo, float scale, std::uint32_t bins) {
 
 }  // namespace
 
-Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg) {
+Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const std::uint32_t bins = td.config.bin_count;
-    std::vector<Bounds3f> bin_box(bins);
-    std::vector<std::uint32_t> bin_count(bins);
-    std::vector<float> right_area(bins);
-    std::vector<std::uint32_t> right_count(bins);
+    // Bin scratch, one per thread (subtrees may build concurrently).
+    struct Scratch {
+        std::vector<Bounds3f> bin_box;
+        std::vector<std::uint32_t> bin_count;
+        std::vector<float> right_area;
+        std::vector<std::uint32_t> right_count;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch([bins] {
+        return Scratch{std::vector<Bounds3f>(bins), std::vector<std::uint32_t>(bins),
+                       std::vector<float>(bins), std::vector<std::uint32_t>(bins)};
+    });
 
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
                      bool balance) -> std::optional<bvh_detail::Split> {
@@ -45,6 +54,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg) {
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }
         const Bounds3f cb = t.centroid_bounds(b, e);
+        auto& [bin_box, bin_count, right_area, right_count] = scratch.local();
         // Costs are compared unnormalised (times the node area), so zero-area nodes need no
         // division: leaf = Ci * n * A, split = Ct * A + Ci * (A_L n_L + A_R n_R).
         float best = std::numeric_limits<float>::infinity();
@@ -108,7 +118,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg) {
         const auto mid = static_cast<std::uint32_t>(first_right - t.ids.begin());
         return bvh_detail::Split{mid, best_axis};
     };
-    return td.run(split);
+    return with_threads(threads, [&] { return td.run(split, threads != 1); });
 }
 
 }  // namespace rtlab

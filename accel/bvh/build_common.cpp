@@ -58,6 +58,22 @@ Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
     return {mid, axis};
 }
 
+void TopDown::splice(std::vector<BvhNode>& nodes,
+                     std::uint32_t slot,
+                     const std::vector<BvhNode>& sub) {
+    const auto shift = static_cast<std::uint32_t>(nodes.size()) - 1;
+    const auto moved = [shift](BvhNode node) {
+        if (!node.is_leaf()) {
+            node.first += shift;
+        }
+        return node;
+    };
+    nodes[slot] = moved(sub[0]);
+    for (std::size_t k = 1; k < sub.size(); ++k) {
+        nodes.push_back(moved(sub[k]));
+    }
+}
+
 bool TopDown::must_balance(std::uint32_t depth, std::uint32_t n) {
     // An unbalanced split leaves a child of up to n - 1 primitives at depth + 1; it is safe while
     // depth + 1 + ceil_log2(n) <= 64, since a balanced split from there on loses one log2 per

@@ -1,14 +1,16 @@
 #pragma once
 // Shared machinery of the BVH builders (internal to accel/bvh): which boxes are usable, the
-// top-down recursion that emits Wald nodes in depth-first pair order, the object-median split and
-// the depth guard that keeps every leaf at depth <= 64.
+// top-down recursion that emits Wald nodes in depth-first pair order (in parallel when asked), the
+// object-median split and the depth guard that keeps every leaf at depth <= 64.
 
 #include "accel/bvh/bvh.h"
+#include "base/thread_arena.h"
 
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
+#include <tbb/parallel_invoke.h>
 #include <vector>
 
 namespace rtlab::bvh_detail {
@@ -54,11 +56,13 @@ public:
     /// that every leaf below stays at depth <= 64: invariant depth + ceil_log2(n) <= 64.
     static bool must_balance(std::uint32_t depth, std::uint32_t n);
 
-    /// Runs the recursion. split(*this, b, e, box, balance) returns a Split or nullopt for a
-    /// leaf; when balance is true it must return a balanced split, and it must split whenever
-    /// e - b > max_leaf_size. Returns the finished tree.
+    /// Runs the recursion, children of large ranges as parallel TBB tasks when `parallel`.
+    /// split(*this, b, e, box, balance) returns a Split or nullopt for a leaf; when balance is true
+    /// it must return a balanced split, and it must split whenever e - b > max_leaf_size. It may
+    /// run concurrently on disjoint ranges, touching only ids[b, e) and scratch of its own range or
+    /// thread. Returns the finished tree, the same for any thread count.
     template <class SplitFn>
-    Bvh run(SplitFn&& split) {
+    Bvh run(SplitFn&& split, bool parallel = false) {
         Bvh bvh;
         bvh.prim_count = static_cast<std::uint32_t>(boxes.size());
         bvh.unreferenced_count = bvh.prim_count - static_cast<std::uint32_t>(ids.size());
@@ -67,21 +71,28 @@ public:
             bvh.nodes.reserve(2 * ids.size() - 1);
             bvh.nodes.emplace_back();
             const auto n = static_cast<std::uint32_t>(ids.size());
-            build_node(bvh, split, 0, 0, n, 0, range_bounds(0, n));
+            build_node(bvh.nodes, split, 0, 0, n, 0, range_bounds(0, n), parallel);
         }
         bvh.prim_ids = ids;
         return bvh;
     }
 
+    /// Ranges at least this large build their two children as parallel tasks.
+    static constexpr std::uint32_t parallel_min = 4096;
+
 private:
+    // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
+    // depth-first pair order (both children, then the left subtree, then the right). In
+    // parallel, large children build into their own arrays, spliced in that same order.
     template <class SplitFn>
-    void build_node(Bvh& bvh,
+    void build_node(std::vector<BvhNode>& nodes,
                     SplitFn& split,
                     std::uint32_t node,
                     std::uint32_t b,
                     std::uint32_t e,
                     std::uint32_t depth,
-                    const Bounds3f& box) {
+                    const Bounds3f& box,
+                    bool parallel) {
         const std::uint32_t n = e - b;
         std::optional<Split> s;
         if (n > 1) {
@@ -91,16 +102,32 @@ private:
             }
         }
         if (!s) {
-            bvh.nodes[node] = BvhNode::make_leaf(box, b, n);
+            nodes[node] = BvhNode::make_leaf(box, b, n);
             return;
         }
-        const auto left = static_cast<std::uint32_t>(bvh.nodes.size());
-        bvh.nodes.emplace_back();
-        bvh.nodes.emplace_back();
-        bvh.nodes[node] = BvhNode::make_inner(box, left, s->axis);
-        build_node(bvh, split, left, b, s->mid, depth + 1, range_bounds(b, s->mid));
-        build_node(bvh, split, left + 1, s->mid, e, depth + 1, range_bounds(s->mid, e));
+        const auto left = static_cast<std::uint32_t>(nodes.size());
+        nodes.emplace_back();
+        nodes.emplace_back();
+        nodes[node] = BvhNode::make_inner(box, left, s->axis);
+        const Bounds3f left_box = range_bounds(b, s->mid), right_box = range_bounds(s->mid, e);
+        if (parallel && n >= parallel_min) {
+            std::vector<BvhNode> l(1), r(1);
+            tbb::parallel_invoke(
+                [&] { build_node(l, split, 0, b, s->mid, depth + 1, left_box, true); },
+                [&] { build_node(r, split, 0, s->mid, e, depth + 1, right_box, true); });
+            splice(nodes, left, l);
+            splice(nodes, left + 1, r);
+            return;
+        }
+        build_node(nodes, split, left, b, s->mid, depth + 1, left_box, parallel);
+        build_node(nodes, split, left + 1, s->mid, e, depth + 1, right_box, parallel);
     }
+
+    /// Puts sub[0] at nodes[slot] and appends sub[1..]: index k >= 1 of sub moves to
+    /// nodes.size() + k - 1, so child links are shifted by that much.
+    static void splice(std::vector<BvhNode>& nodes,
+                       std::uint32_t slot,
+                       const std::vector<BvhNode>& sub);
 };
 
 }  // namespace rtlab::bvh_detail

@@ -2,13 +2,16 @@
 // in the construction of BVHs, octrees, and k-d trees": 30-bit Morton codes of the centres
 // (morton_bits per axis over the centroid bounds), sorted (ties by id); a node splits where its
 // highest differing code bit flips, runs of equal codes split at their middle. This variant walks
-// the same tree top-down on one thread and stops at max_leaf_size; node boxes are the unions of
-// their ranges (what a bottom-up refit gives). Cost: O(N log N) for the sort and the searches.
+// the same tree top-down (subtrees in parallel with `threads`) and stops at max_leaf_size; node
+// boxes are the unions of their ranges (what a bottom-up refit gives). Cost: O(N log N) for the
+// sort (parallel) and the searches.
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <bit>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <vector>
 
 namespace rtlab {
@@ -37,9 +40,7 @@ std::uint32_t quantize(float c, float lo, float scale, std::uint32_t cells) {
     return std::min(cells - 1, static_cast<std::uint32_t>(f));
 }
 
-}  // namespace
-
-Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg) {
+Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const Bounds3f cb = td.centroid_bounds(0, static_cast<std::uint32_t>(td.ids.size()));
     const std::uint32_t cells = 1u << td.config.morton_bits;
@@ -49,15 +50,20 @@ Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg) {
         scale[a] = extent > 0.0f ? static_cast<float>(cells) / extent : 0.0f;
     }
     // Code layout: bit 3i + 2 is x, 3i + 1 is y, 3i is z of quantised bit i.
+    // Keys are unique (the id is in the low half), so any sort gives the same order.
     std::vector<std::uint64_t> keys(td.ids.size());
-    for (std::size_t i = 0; i < td.ids.size(); ++i) {
+    tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
         const Vec3f& c = td.centers[td.ids[i]];
         const std::uint32_t code = (spread_bits(quantize(c.x, cb.lo.x, scale[0], cells)) << 2) |
                                    (spread_bits(quantize(c.y, cb.lo.y, scale[1], cells)) << 1) |
                                    spread_bits(quantize(c.z, cb.lo.z, scale[2], cells));
         keys[i] = (static_cast<std::uint64_t>(code) << 32) | td.ids[i];
+    });
+    if (parallel) {
+        tbb::parallel_sort(keys.begin(), keys.end());
+    } else {
+        std::sort(keys.begin(), keys.end());
     }
-    std::sort(keys.begin(), keys.end());
     std::vector<std::uint32_t> codes(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) {
         codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);
@@ -84,7 +90,13 @@ Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg) {
         const auto mid = static_cast<std::uint32_t>(first_set - codes.begin());
         return bvh_detail::Split{mid, 2 - bit % 3};
     };
-    return td.run(split);
+    return td.run(split, parallel);
+}
+
+}  // namespace
+
+Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
+    return with_threads(threads, [&] { return build(in, cfg, threads != 1); });
 }
 
 }  // namespace rtlab

@@ -1,20 +1,21 @@
 // Object-median BVH (the "equal counts" split of Kay & Kajiya 1986 style hierarchies, pbrt's
 // EqualCounts): split at the median centroid on the largest centroid axis until a range fits in
-// one leaf. Cost: O(N log N) with nth_element.
+// one leaf. Cost: O(N log N) with nth_element; subtrees in parallel with `threads`.
 
 #include "accel/bvh/build_common.h"
 
 namespace rtlab {
 
-Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg) {
+Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
-    return td.run([](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
-                     bool) -> std::optional<bvh_detail::Split> {
+    const auto split = [](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
+                          bool) -> std::optional<bvh_detail::Split> {
         if (e - b <= t.config.max_leaf_size) {
             return std::nullopt;
         }
         return t.median_split(b, e);
-    });
+    };
+    return with_threads(threads, [&] { return td.run(split, threads != 1); });
 }
 
 }  // namespace rtlab

@@ -1,31 +1,36 @@
 // Full-sweep SAH (MacDonald & Booth 1990, "Heuristics for ray tracing using space subdivision"):
 // every split between consecutive centroids on every axis is evaluated with the SAH. The ids are
 // sorted once per axis (ties by id) and kept sorted by stable partitioning, so the build is
-// O(N log N) for the sort plus O(N) per tree level. Ranges whose centroids coincide split at the
-// median by count.
+// O(N log N) for the sort plus O(N) per tree level; subtrees in parallel with `threads`. Ranges
+// whose centroids coincide split at the median by count.
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <tbb/parallel_invoke.h>
 #include <vector>
 
 namespace rtlab {
 
-Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg) {
+namespace {
+
+Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const std::size_t n_all = td.ids.size();
     // order[a] holds the ids sorted by centre on axis a; every node's range [b, e) holds the same
     // id set in all three arrays.
     std::array<std::vector<std::uint32_t>, 3> order;
-    for (std::uint32_t a = 0; a < 3; ++a) {
+    const auto sort_axis = [&](std::uint32_t a) {
         order[a] = td.ids;
         std::sort(order[a].begin(), order[a].end(), [&](std::uint32_t x, std::uint32_t y) {
             const float cx = td.centers[x][a], cy = td.centers[y][a];
             return cx < cy || (cx == cy && x < y);
         });
-    }
+    };
+    tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
+    // Scratch indexed by slot or id, so concurrent subtrees (disjoint ranges) never share it.
     std::vector<float> right_area(n_all);
     std::vector<char> goes_left(td.boxes.size(), 0);
     std::vector<std::uint32_t> scratch(n_all);
@@ -88,7 +93,7 @@ Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg) {
                 continue;
             }
             std::vector<std::uint32_t>& o = order[a];
-            std::uint32_t l = b, r = 0;
+            std::uint32_t l = b, r = b;
             for (std::uint32_t i = b; i < e; ++i) {
                 if (goes_left[o[i]]) {
                     o[l++] = o[i];
@@ -96,12 +101,18 @@ Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg) {
                     scratch[r++] = o[i];
                 }
             }
-            std::copy(scratch.begin(), scratch.begin() + r, o.begin() + l);
+            std::copy(scratch.begin() + b, scratch.begin() + r, o.begin() + l);
         }
         std::copy(order[best_axis].begin() + b, order[best_axis].begin() + e, t.ids.begin() + b);
         return bvh_detail::Split{best_mid, best_axis};
     };
-    return td.run(split);
+    return td.run(split, parallel);
+}
+
+}  // namespace
+
+Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
+    return with_threads(threads, [&] { return build(in, cfg, threads != 1); });
 }
 
 }  // namespace rtlab

@@ -10,13 +10,13 @@
 
 #include "accel/grid/cell_refs.h"
 #include "accel/grid/two_level_grid.h"
+#include "base/thread_arena.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 #include <vector>
 
 namespace rtlab {
@@ -217,11 +217,7 @@ TwoLevelGrid build(const BuildInput& in, const TwoLevelGridConfig& cfg) {
 TwoLevelGrid build_grid_two_level(const BuildInput& in,
                                   const TwoLevelGridConfig& cfg,
                                   std::uint32_t threads) {
-    if (threads == 0) {
-        return build(in, cfg);
-    }
-    tbb::task_arena arena(static_cast<int>(threads));
-    return arena.execute([&] { return build(in, cfg); });
+    return with_threads(threads, [&] { return build(in, cfg); });
 }
 
 AccelInfo TwoLevelGrid::info() const {
@@ -230,10 +226,7 @@ AccelInfo TwoLevelGrid::info() const {
     i.max_depth = top_sub.empty() ? 0 : 1;
     i.bytes = (top_sub.size() + cell_start.size() + cell_prims.size()) * sizeof(std::uint32_t) +
               subs.size() * sizeof(SubGrid);
-    std::size_t present = 0;
-    for (const bool p : prim_present) {
-        present += p ? 1 : 0;
-    }
+    const std::size_t present = present_count(prim_present);
     const double box_area = static_cast<double>(top.box.surface_area());
     const auto area_ratio = [&](const Vec3f& size) {
         return box_area > 0 ? static_cast<double>(Bounds3f(Vec3f{}, size).surface_area()) / box_area
@@ -256,11 +249,7 @@ AccelInfo TwoLevelGrid::info() const {
 }
 
 std::string TwoLevelGrid::validate() const {
-    std::size_t present = 0;
-    for (const bool p : prim_present) {
-        present += p ? 1 : 0;
-    }
-    if (present == 0) {
+    if (present_count(prim_present) == 0) {
         return top_sub.empty() && subs.empty() && cell_start.empty() && cell_prims.empty()
                    ? std::string{}
                    : "cells although no primitive exists";
@@ -289,30 +278,10 @@ std::string TwoLevelGrid::validate() const {
             }
         }
     }
-    if (next_sub != subs.size() || cell_start.size() != expected_first + 1 ||
-        cell_start.front() != 0 || cell_start.back() != cell_prims.size()) {
-        return "CSR offsets do not match the sub-grid cells and references";
+    if (next_sub != subs.size() || cell_start.size() != expected_first + 1) {
+        return "CSR offsets do not match the sub-grid cells";
     }
-    std::vector<bool> seen(prim_present.size());
-    for (std::size_t c = 0; c + 1 < cell_start.size(); ++c) {
-        if (cell_start[c] > cell_start[c + 1] || cell_start[c + 1] > cell_prims.size()) {
-            return "CSR offsets decrease or pass the references at cell " + std::to_string(c);
-        }
-        for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-            const std::uint32_t id = cell_prims[k];
-            if (id >= prim_present.size() || !prim_present[id]) {
-                return "cell " + std::to_string(c) + " references missing primitive " +
-                       std::to_string(id);
-            }
-            seen[id] = true;
-        }
-    }
-    for (std::size_t id = 0; id < prim_present.size(); ++id) {
-        if (prim_present[id] && !seen[id]) {
-            return "primitive " + std::to_string(id) + " is in no cell";
-        }
-    }
-    return {};
+    return check_csr_cells(cell_start, cell_prims, prim_present);
 }
 
 }  // namespace rtlab

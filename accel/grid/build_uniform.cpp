@@ -9,6 +9,7 @@
 
 #include "accel/grid/cell_refs.h"
 #include "accel/grid/grid.h"
+#include "base/thread_arena.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +20,9 @@
 
 namespace rtlab {
 
-Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
+namespace {
+
+Grid build(const BuildInput& in, const GridConfig& cfg) {
     Grid g;
     g.prim_present.resize(in.bounds.size());
     std::size_t present = 0;
@@ -109,15 +112,19 @@ Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
     return g;
 }
 
+}  // namespace
+
+/// The uniform grid on `threads` TBB threads (0: all allowed); the grid does not depend on it.
+Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg, std::uint32_t threads) {
+    return with_threads(threads, [&] { return build(in, cfg); });
+}
+
 AccelInfo Grid::info() const {
     AccelInfo i;
     const std::size_t cells = cell_count();
     i.nodes = cells;
     i.bytes = (cell_start.size() + cell_prims.size()) * sizeof(std::uint32_t);
-    std::size_t present = 0;
-    for (const bool p : prim_present) {
-        present += p ? 1 : 0;
-    }
+    const std::size_t present = present_count(prim_present);
     const double box_area = static_cast<double>(box.surface_area());
     const Bounds3f one_cell(box.lo, box.lo + cell_size);
     const double p = box_area > 0 ? static_cast<double>(one_cell.surface_area()) / box_area : 1.0;
@@ -134,41 +141,17 @@ AccelInfo Grid::info() const {
 }
 
 std::string Grid::validate() const {
-    std::size_t present = 0;
-    for (const bool p : prim_present) {
-        present += p ? 1 : 0;
-    }
-    if (present == 0) {
+    if (present_count(prim_present) == 0) {
         return cell_start.empty() && cell_prims.empty() ? std::string{}
                                                         : "cells although no primitive exists";
     }
     if (res[0] == 0 || res[1] == 0 || res[2] == 0) {
         return "zero resolution with primitives present";
     }
-    if (cell_start.size() != cell_count() + 1 || cell_start.front() != 0 ||
-        cell_start.back() != cell_prims.size()) {
-        return "CSR offsets do not match the cell and reference counts";
+    if (cell_start.size() != cell_count() + 1) {
+        return "CSR offsets do not match the cell count";
     }
-    std::vector<bool> seen(prim_present.size());
-    for (std::size_t c = 0; c < cell_count(); ++c) {
-        if (cell_start[c] > cell_start[c + 1]) {
-            return "CSR offsets decrease at cell " + std::to_string(c);
-        }
-        for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-            const std::uint32_t id = cell_prims[k];
-            if (id >= prim_present.size() || !prim_present[id]) {
-                return "cell " + std::to_string(c) + " references missing primitive " +
-                       std::to_string(id);
-            }
-            seen[id] = true;
-        }
-    }
-    for (std::size_t id = 0; id < prim_present.size(); ++id) {
-        if (prim_present[id] && !seen[id]) {
-            return "primitive " + std::to_string(id) + " is in no cell";
-        }
-    }
-    return {};
+    return check_csr_cells(cell_start, cell_prims, prim_present);
 }
 
 }  // namespace rtlab

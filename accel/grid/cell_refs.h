@@ -1,10 +1,12 @@
 #pragma once
 // Building blocks of the grid builders: primitive references to cells gathered in parallel (TBB
 // over fixed blocks of ids, concatenated in id order, so the result never depends on the thread
-// count), and their counting sort into CSR form (stable: ids stay ascending within a cell).
+// count), their counting sort into CSR form (stable: ids stay ascending within a cell), and the
+// CSR invariants both grids' validate() check.
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <tbb/parallel_for.h>
 #include <utility>
 #include <vector>
@@ -60,5 +62,15 @@ void refs_to_csr(const std::vector<std::pair<std::uint32_t, T>>& refs,
         values[cursor[r.first]++] = r.second;
     }
 }
+
+/// Number of primitives marked present.
+std::size_t present_count(const std::vector<bool>& prim_present);
+
+/// Empty when `start` (size cells + 1) runs from 0 to values.size() without decreasing, every
+/// value is a present primitive's id and every present primitive is in some cell; else the first
+/// violation.
+std::string check_csr_cells(const std::vector<std::uint32_t>& start,
+                            const std::vector<std::uint32_t>& values,
+                            const std::vector<bool>& prim_present);
 
 }  // namespace rtlab

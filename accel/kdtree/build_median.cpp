@@ -3,12 +3,16 @@
 // min_leaf_size, at max_depth, or when the split's SAH cost is not below the leaf's.
 // Straddling primitives go to both sides with clipped boxes (BuildInput::clip when given and
 // Config::perfect_splits is on).
-// Cost: O(N log N) for balanced scenes (each level touches each reference once).
+// Cost: O(N log N) for balanced scenes (each level touches each reference once). Subtrees build
+// in parallel with Config::threads; the tree is the same for any thread count.
 
 #include "accel/kdtree/build_common.h"
 #include "accel/kdtree/kdtree.h"
+#include "base/thread_arena.h"
 
 #include <cstdint>
+#include <stdexcept>
+#include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
 
@@ -24,15 +28,19 @@ struct Ref {
 
 class MedianBuilder {
 public:
-    MedianBuilder(const BuildInput& in, const KdTree::Config& cfg, KdTree& tree)
+    MedianBuilder(const BuildInput& in,
+                  const KdTree::Config& cfg,
+                  std::uint32_t max_depth,
+                  bool parallel)
         : in_(in)
         , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
         , min_leaf_(cfg.min_leaf_size)
+        , max_depth_(max_depth)
         , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
-        , tree_(tree) {}
+        , parallel_(parallel) {}
 
-    /// Builds the subtree of the node `box` holding `refs`.
-    void recurse(std::vector<Ref> refs, const Bounds3f& box, std::uint32_t depth) {
+    /// Builds the subtree of the node `box` holding `refs` into `out` (nodes and lists only).
+    void recurse(std::vector<Ref> refs, const Bounds3f& box, std::uint32_t depth, KdTree& out) {
         const std::size_t n = refs.size();
         const auto axis = static_cast<std::uint32_t>(box.largest_axis());
         const float mid = box.center()[axis];
@@ -41,7 +49,7 @@ public:
             nl += r.box.lo[axis] < mid || r.box.hi[axis] <= mid ? 1 : 0;
             nr += r.box.hi[axis] > mid ? 1 : 0;
         }
-        const bool can_split = n > min_leaf_ && depth < tree_.max_depth && mid > box.lo[axis] &&
+        const bool can_split = n > min_leaf_ && depth < max_depth_ && mid > box.lo[axis] &&
                                mid < box.hi[axis] &&
                                cost_.split_cost(box, axis, mid, nl, nr) < cost_.leaf_cost(n);
         if (!can_split) {
@@ -50,7 +58,7 @@ public:
             for (const Ref& r : refs) {
                 ids.push_back(r.id);
             }
-            kd_detail::emit_leaf(tree_, ids);
+            kd_detail::emit_leaf(out, ids);
             return;
         }
         const Bounds3f left_box = kd_detail::half_box(box, axis, mid, 0);
@@ -77,13 +85,45 @@ public:
         }
         refs.clear();
         refs.shrink_to_fit();
-        const std::uint32_t index = kd_detail::emit_inner(tree_, axis, mid);
-        recurse(std::move(left), left_box, depth + 1);
-        kd_detail::link_above(tree_, index);
-        recurse(std::move(right), right_box, depth + 1);
+        const std::uint32_t index = kd_detail::emit_inner(out, axis, mid);
+        if (parallel_ && n >= parallel_min) {
+            // Both children as tasks into their own arrays, appended in pre-order: the same
+            // tree as the serial recursion.
+            KdTree lt, rt;
+            tbb::parallel_invoke([&] { recurse(std::move(left), left_box, depth + 1, lt); },
+                                 [&] { recurse(std::move(right), right_box, depth + 1, rt); });
+            append(out, lt);
+            kd_detail::link_above(out, index);
+            append(out, rt);
+            return;
+        }
+        recurse(std::move(left), left_box, depth + 1, out);
+        kd_detail::link_above(out, index);
+        recurse(std::move(right), right_box, depth + 1, out);
     }
 
+    /// Nodes with at least this many references build their children as parallel tasks.
+    static constexpr std::size_t parallel_min = 4096;
+
 private:
+    /// Appends a subtree built on its own (indices from 0) to t's nodes and lists.
+    static void append(KdTree& t, const KdTree& sub) {
+        const std::size_t node_shift = t.nodes.size(), list_shift = t.prim_ids.size();
+        if (node_shift + sub.nodes.size() > KdNode::max_index ||
+            list_shift + sub.prim_ids.size() > 0xFFFFFFFFu) {
+            throw std::length_error("kd-tree: too many nodes or primitive references");
+        }
+        for (const KdNode& n : sub.nodes) {
+            t.nodes.push_back(
+                n.is_leaf()
+                    ? KdNode::leaf(n.prim_offset() + static_cast<std::uint32_t>(list_shift),
+                                   n.prim_count())
+                    : KdNode::inner(n.axis(), n.split(),
+                                    n.above_child() + static_cast<std::uint32_t>(node_shift)));
+        }
+        t.prim_ids.insert(t.prim_ids.end(), sub.prim_ids.begin(), sub.prim_ids.end());
+    }
+
     /// The part of primitive id inside box (empty when none).
     Bounds3f clip(std::uint32_t id, const Bounds3f& box) const {
         if (perfect_) {
@@ -95,24 +135,27 @@ private:
     const BuildInput& in_;
     kd_detail::CostModel cost_;
     std::size_t min_leaf_;
+    std::uint32_t max_depth_;
     bool perfect_;
-    KdTree& tree_;
+    bool parallel_;
 };
 
 }  // namespace
 
 KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg) {
-    KdTree tree = kd_detail::start_tree(in, cfg);
-    std::vector<Ref> refs;
-    refs.reserve(in.bounds.size());
-    for (std::uint32_t id = 0; id < in.bounds.size(); ++id) {
-        if (tree.prim_present[id]) {
-            refs.push_back({id, in.bounds[id]});
+    return with_threads(cfg.threads, [&] {
+        KdTree tree = kd_detail::start_tree(in, cfg);
+        std::vector<Ref> refs;
+        refs.reserve(in.bounds.size());
+        for (std::uint32_t id = 0; id < in.bounds.size(); ++id) {
+            if (tree.prim_present[id]) {
+                refs.push_back({id, in.bounds[id]});
+            }
         }
-    }
-    MedianBuilder builder(in, cfg, tree);
-    builder.recurse(std::move(refs), tree.scene_bounds, 0);
-    return tree;
+        MedianBuilder builder(in, cfg, tree.max_depth, cfg.threads != 1);
+        builder.recurse(std::move(refs), tree.scene_bounds, 0, tree);
+        return tree;
+    });
 }
 
 }  // namespace rtlab

@@ -13,6 +13,7 @@
 #include "accel/kdtree/build_common.h"
 #include "accel/kdtree/events.h"
 #include "accel/kdtree/kdtree.h"
+#include "base/thread_arena.h"
 
 #include <algorithm>
 #include <array>
@@ -21,7 +22,6 @@
 #include <stdexcept>
 #include <tbb/global_control.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 #include <vector>
 
 namespace rtlab {
@@ -371,11 +371,7 @@ KdTree build(const BuildInput& in, const KdTree::Config& cfg) {
 
 /// The SAH kd-tree on cfg.threads TBB threads (0: all allowed); the tree does not depend on it.
 KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg) {
-    if (cfg.threads == 0) {
-        return build(in, cfg);
-    }
-    tbb::task_arena arena(static_cast<int>(cfg.threads));
-    return arena.execute([&] { return build(in, cfg); });
+    return with_threads(cfg.threads, [&] { return build(in, cfg); });
 }
 
 }  // namespace rtlab
