@@ -15,6 +15,7 @@
 #include "accel/bvh/pair_bvh.h"
 #include "accel/bvh/wide_bvh.h"
 #include "accel/grid/grid.h"
+#include "accel/grid/two_level_grid.h"
 #include "accel/kdtree/kdtree.h"
 #include "accel/spec.h"
 
@@ -29,7 +30,8 @@
 namespace rtlab {
 
 /// Every structure type (node layout) a registry row can build.
-using AccelTypes = std::tuple<BruteForce, Bvh, PairBvh, WideBvh<4>, WideBvh<8>, KdTree, Grid>;
+using AccelTypes =
+    std::tuple<BruteForce, Bvh, PairBvh, WideBvh<4>, WideBvh<8>, KdTree, Grid, TwoLevelGrid>;
 
 namespace detail {
 template <class List>

@@ -18,6 +18,9 @@ Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std:
 KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
 KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
 Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg);
+TwoLevelGrid build_grid_two_level(const BuildInput& in,
+                                  const TwoLevelGridConfig& cfg,
+                                  std::uint32_t threads);
 
 namespace {
 
@@ -25,6 +28,7 @@ namespace {
 const Bvh::Config bvh_default{};
 const KdTree::Config kd_default{};
 const GridConfig grid_default{};
+const TwoLevelGridConfig grid2_default{};
 constexpr double cost_max = 1e6;
 
 const ParamSpec max_leaf =
@@ -85,6 +89,12 @@ const ParamSpec min_leaf = integer_param("min_leaf",
                                          1,
                                          1024,
                                          "nodes with at most this many primitives become leaves");
+const ParamSpec perfect = integer_param("perfect",
+                                        kd_default.perfect_splits ? 1 : 0,
+                                        0,
+                                        1,
+                                        "1: perfect splits (straddling triangles clipped to each "
+                                        "side; slower build), 0: boxes cut at the plane");
 const ParamSpec density = real_param("density",
                                      static_cast<double>(grid_default.density),
                                      1e-3,
@@ -92,6 +102,19 @@ const ParamSpec density = real_param("density",
                                      "lambda: target cells per primitive (Woo)");
 const ParamSpec max_res =
     integer_param("max_res", grid_default.max_res, 1, 1024, "most cells along one axis");
+
+const ParamSpec top_density = real_param("top_density",
+                                         static_cast<double>(grid2_default.top_density),
+                                         1e-4,
+                                         1e2,
+                                         "lambda_1: top-grid cells per primitive (Woo)");
+const ParamSpec leaf_density = real_param("leaf_density",
+                                          static_cast<double>(grid2_default.leaf_density),
+                                          1e-3,
+                                          1e2,
+                                          "lambda_2: cells per primitive of each sub-grid (Woo)");
+const ParamSpec grid2_max_res = integer_param(
+    "max_res", grid2_default.max_res, 1, 1024, "most cells along one axis, either level");
 
 std::uint32_t as_u32(double v) {
     return static_cast<std::uint32_t>(v);
@@ -114,6 +137,8 @@ KdTree::Config kd_config(const AccelSpec& s) {
     c.empty_bonus = static_cast<float>(s.value_or("empty_bonus", c.empty_bonus));
     c.max_depth = as_u32(s.value_or("max_depth", c.max_depth));
     c.min_leaf_size = as_u32(s.value_or("min_leaf", c.min_leaf_size));
+    c.perfect_splits = s.value_or("perfect", c.perfect_splits ? 1 : 0) != 0;
+    c.threads = as_u32(s.value_or("threads", c.threads));
     return c;
 }
 
@@ -126,6 +151,14 @@ GridConfig grid_config(const AccelSpec& s) {
 
 std::uint32_t threads_of(const AccelSpec& s) {
     return as_u32(s.value_or("threads", 0));
+}
+
+AnyAccel grid2_row(const BuildInput& in, const AccelSpec& s) {
+    TwoLevelGridConfig c;
+    c.top_density = static_cast<float>(s.value_or("top_density", c.top_density));
+    c.leaf_density = static_cast<float>(s.value_or("leaf_density", c.leaf_density));
+    c.max_res = as_u32(s.value_or("max_res", c.max_res));
+    return build_grid_two_level(in, c, threads_of(s));
 }
 
 AnyAccel pbinned_row(const BuildInput& in, const AccelSpec& s) {
@@ -215,17 +248,22 @@ const AccelEntry registry_rows[] = {
      {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &wide_row<8>},
     {"kdtree:sah",
-     "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006)",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
      &row<build_kdtree_sah, kd_config>},
     {"kdtree:median",
      "kd-tree, spatial median of the longest axis, SAH termination",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf},
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect},
      &row<build_kdtree_median, kd_config>},
     {"grid:uniform",
      "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",
      {density, max_res},
      &row<build_grid_uniform, grid_config>},
+    {"grid:two_level",
+     "two-level grid: coarse top grid, a Woo-sized grid in each non-empty top cell over the part "
+     "its primitives cover (Kalojanov et al. 2011), 3D-DDA in both levels, parallel build",
+     {top_density, leaf_density, grid2_max_res, threads},
+     &grid2_row},
 };
 
 }  // namespace

@@ -96,10 +96,14 @@ double ParamSpec::parse(std::string_view spec, std::string_view text) const {
     if (kind == ParamKind::integer && v != std::floor(v)) {
         fail(spec, fmt::format("{} must be a whole number, not '{}'", key, text));
     }
-    if (kind == ParamKind::real) {
-        v = static_cast<double>(static_cast<float>(v));  // the builders store floats
+    double lo = min;
+    double hi = max;
+    if (kind == ParamKind::real) {  // the builders store floats: compare in float
+        v = static_cast<double>(static_cast<float>(v));
+        lo = static_cast<double>(static_cast<float>(min));
+        hi = static_cast<double>(static_cast<float>(max));
     }
-    if (!(v >= min && v <= max)) {
+    if (!(v >= lo && v <= hi)) {
         fail(spec, fmt::format("{}={} is outside {}", key, text, range_text()));
     }
     return v;

@@ -1,6 +1,7 @@
 // rtlab compare: compares two hit files ray by ray. t must agree within a relative tolerance; the
 // primitive must be the same unless the two hits are an exact tie (same t within the tolerance,
-// e.g. a ray through a shared edge). Prints one JSON object; exits 1 when the files disagree.
+// e.g. a ray through a shared edge). A NaN t on a hit is a disagreement (it equals nothing, so it
+// is never within the tolerance). Prints one JSON object; exits 1 when the files disagree.
 #include "apps/commands.h"
 #include "trace/binary_io.h"
 
@@ -25,8 +26,9 @@ Command add_compare(CLI::App& root) {
     auto a = std::make_shared<CompareArgs>();
     CLI::App* sub = root.add_subcommand(
         "compare",
-        "Compare two hit files (rtlab trace --hits): same hit/miss, t within --rel-tol, same "
-        "primitive except exact ties; prints one JSON object, exit 1 on disagreement");
+        "Compare two hit files (rtlab trace --hits): same hit/miss, t within --rel-tol (a NaN t "
+        "never is), same primitive except exact ties; prints one JSON object, exit 1 on "
+        "disagreement");
     sub->add_option("A", a->a, "First hit file")->required();
     sub->add_option("B", a->b, "Second hit file")->required();
     sub->add_option("--rel-tol", a->rel_tol, "Relative tolerance on t (default 1e-6)")
@@ -41,7 +43,7 @@ Command add_compare(CLI::App& root) {
                                              " hits, but " + a->a + " has " +
                                              std::to_string(ha.size()));
                 }
-                std::size_t hit_miss = 0, t_diff = 0, ties = 0;
+                std::size_t hit_miss = 0, t_diff = 0, nan_t = 0, ties = 0;
                 double max_rel = 0;
                 for (std::size_t i = 0; i < ha.size(); ++i) {
                     const Hit& x = ha[i];
@@ -55,8 +57,12 @@ Command add_compare(CLI::App& root) {
                     }
                     const double tx = x.t, ty = y.t;
                     const double rel = std::abs(tx - ty) / std::max(std::abs(tx), 1e-30);
-                    max_rel = std::max(max_rel, rel);
-                    if (rel > a->rel_tol) {
+                    if (std::isnan(rel)) {
+                        ++nan_t;  // counted in t_diff as well: a NaN t agrees with nothing
+                    } else {
+                        max_rel = std::max(max_rel, rel);
+                    }
+                    if (!(rel <= a->rel_tol)) {
                         ++t_diff;
                     } else if (x.prim != y.prim) {
                         ++ties;  // same t, other primitive: an exact tie (shared edge, overlap)
@@ -69,6 +75,7 @@ Command add_compare(CLI::App& root) {
                                  {"agree", agree},
                                  {"hit_miss", hit_miss},
                                  {"t_diff", t_diff},
+                                 {"nan_t", nan_t},
                                  {"ties", ties},
                                  {"max_rel_t_diff", max_rel}};
                 std::cout << j.dump() << "\n";

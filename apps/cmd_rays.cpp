@@ -53,12 +53,9 @@ Command add_rays(CLI::App& root) {
                     "Refuse counts whose estimate exceeds this many MiB (default half of RAM)");
     return {sub, [a] {
                 const RayKind kind = parse_ray_kind(a->kind);
-                const std::uint64_t limit =
-                    a->max_memory_mib != 0
-                        ? gen::saturating_mul(a->max_memory_mib, std::uint64_t{1} << 20)
-                        : gen::default_memory_limit();
                 gen::check_memory(fmt::format("rays --count {}", a->count),
-                                  gen::saturating_mul(a->count, bytes_per_ray(kind)), limit);
+                                  gen::saturating_mul(a->count, bytes_per_ray(kind)),
+                                  gen::memory_limit_mib(a->max_memory_mib));
                 check_output_path(a->out);
                 const Scene scene = load_scene(a->scene);
                 const std::vector<Rayf> rays = make_rays(scene, kind, a->count, a->seed);

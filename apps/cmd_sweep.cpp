@@ -39,7 +39,8 @@ int run_plan(const PlanArgs& a) {
                 j["cases"].push_back({{"case", c.id},
                                       {"index", c.index},
                                       {"shard", k},
-                                      {"scene", p.sweep.scenes[c.scene].label},
+                                      {"type", sweep::to_string(c.type)},
+                                      {"scene", sweep::scene_label(p.sweep, c)},
                                       {"spec", c.spec},
                                       {"methods", methods_text(c.methods)},
                                       {"threads", c.threads},
@@ -50,17 +51,25 @@ int run_plan(const PlanArgs& a) {
         return 0;
     }
     const sweep::SweepFile& s = p.sweep;
+    std::size_t renders = 0;
+    std::size_t crosschecks = 0;
+    for (const sweep::Case& c : p.cases) {
+        renders += c.type == sweep::CaseType::render ? 1 : 0;
+        crosschecks += c.type == sweep::CaseType::crosscheck ? 1 : 0;
+    }
     std::cout << fmt::format(
         "sweep '{}': {} cases = {} scenes x {} specs x {} methods x {} thread counts x {} ray "
-        "kinds; {} rays per kind, repeat {}, seed {}; {} shards\n",
+        "kinds{}{}; {} rays per kind, repeat {}, seed {}; {} shards\n",
         s.name, p.cases.size(), s.scenes.size(), s.specs.size(), s.methods.size(), s.threads.size(),
-        s.kinds.size(), s.ray_count, s.repeat, s.seed, p.shards.size());
+        s.kinds.size(), renders > 0 ? fmt::format(" + {} renders", renders) : "",
+        crosschecks > 0 ? fmt::format(" + {} cross-checks", crosschecks) : "", s.ray_count,
+        s.repeat, s.seed, p.shards.size());
     for (std::size_t k = 0; k < p.shards.size(); ++k) {
         std::cout << fmt::format("shard {}: {} cases\n", k, p.shards[k].size());
         for (const std::size_t i : p.shards[k]) {
             const sweep::Case& c = p.cases[i];
             std::cout << fmt::format("  {} {:>5} {:<24} {:<44} {:<12} {:>2} {}\n", c.id, c.index,
-                                     s.scenes[c.scene].label, c.spec, methods_text(c.methods),
+                                     sweep::scene_label(s, c), c.spec, methods_text(c.methods),
                                      c.threads, c.kind);
         }
     }
@@ -69,7 +78,7 @@ int run_plan(const PlanArgs& a) {
 
 void print_case(const sweep::Planned& p, std::size_t i, const std::string& tail) {
     const sweep::Case& c = p.cases[i];
-    std::cout << fmt::format("  {} {} {} {} {}{}\n", c.id, p.sweep.scenes[c.scene].label, c.spec,
+    std::cout << fmt::format("  {} {} {} {} {}{}\n", c.id, sweep::scene_label(p.sweep, c), c.spec,
                              methods_text(c.methods), c.kind, tail);
 }
 

@@ -61,6 +61,7 @@ int run_trace(const TraceArgs& a) {
     opt.repeat = a.repeat;
     opt.warmup = a.warmup ? 1 : 0;
     opt.stats = a.stats;
+    opt.epo = a.stats;
     std::vector<Hit> hits;
     const TraceMeasurement m = measure_trace(tracer, rays, opt, &hits);
 
@@ -88,6 +89,11 @@ int run_trace(const TraceArgs& a) {
     if (m.has_stats) {
         j["nodes_per_ray"] = m.nodes_per_ray;
         j["prims_per_ray"] = m.prims_per_ray;
+        j["cost_model"] = m.cost_model;
+        j["measured_cost"] = m.measured_cost;
+        if (m.epo >= 0) {
+            j["epo"] = m.epo;
+        }
     }
     if (!a.hits.empty()) {
         save_hits(a.hits, hits);
@@ -104,7 +110,7 @@ Command add_trace(CLI::App& root) {
         "trace",
         "Trace a ray file through a scene with one structure per primitive set; prints one JSON "
         "object (accel method rays hits build_ms trace_ms mrays_per_s [nodes_per_ray "
-        "prims_per_ray])");
+        "prims_per_ray cost_model measured_cost [epo]])");
     sub->add_option("--scene", a->scene, "Scene JSON or mesh file (.obj .ply .off .stl)")
         ->required();
     sub->add_option("--rays", a->rays, "Ray file (32-byte float32 records, see rtlab rays)")
@@ -132,7 +138,11 @@ Command add_trace(CLI::App& root) {
         ->check(CLI::Range(1, 10000));
     sub->add_flag("!--no-warmup", a->warmup,
                   "Time the first run too (no untimed warm-up run before the --repeat runs)");
-    sub->add_flag("--stats", a->stats, "Count nodes and primitive tests per ray (separate pass)");
+    sub->add_flag("--stats", a->stats,
+                  "Count nodes and primitive tests per ray (separate pass); adds the one cost "
+                  "model's prediction (cost_model), the measured ct*nodes + ci*prims "
+                  "(measured_cost) and, for BVHs over triangles, the end-point overlap (epo); see "
+                  "docs/architecture.md");
     sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
     return {sub, [a] { return run_trace(*a); }};
 }

@@ -26,11 +26,21 @@ constexpr std::string_view own_flags =
     "  --suite NAME   all (default: every suite below but issue12) or issue12 (issue 12's target\n"
     "                 table: SF 4 tessellated flake with floor, SF 4 and SF 5 analytic, 1 and 2\n"
     "                 threads, Embree medium and high; bench/report.py --suite issue12 writes\n"
-    "                 it into docs/results.md; with --quick sizes 2 and 3)\n\n";
+    "                 it into docs/results.md; with --quick sizes 2 and 3), grid2 (issue 16:\n"
+    "                 every row on the flake with its floor, the stadium and analytic spheres,\n"
+    "                 one thread, with cost_model, measured_cost and epo; builds at 1 and 2\n"
+    "                 threads; bench/report.py --suite grid2 writes it into docs/results.md) or\n"
+    "                 kdtree (issue 16's kd-tree targets: kdtree:sah against the binary BVHs,\n"
+    "                 interleaved in one process, one thread; bench/report_kdtree.py makes the\n"
+    "                 table)\n\n";
 }  // namespace
 
 bool rtlab::bench::quick_mode() {
     return quick;
+}
+
+bool rtlab::bench::specs_named() {
+    return !specs.empty();
 }
 
 std::vector<std::string> rtlab::bench::bench_specs() {
@@ -55,9 +65,9 @@ int main(int argc, char** argv) {
                 quick = true;
             } else if (arg == "--suite" && i + 1 < argc) {
                 suite = argv[++i];
-                if (suite != "all" && suite != "issue12") {
-                    throw std::invalid_argument("--suite must be all or issue12, not '" + suite +
-                                                "'");
+                if (suite != "all" && suite != "issue12" && suite != "grid2" && suite != "kdtree") {
+                    throw std::invalid_argument(
+                        "--suite must be all, issue12, grid2 or kdtree, not '" + suite + "'");
                 }
             } else if (arg == "--accel" && i + 1 < argc) {
                 specs.push_back(rtlab::parse_accel_spec(argv[++i]).canonical());
@@ -77,6 +87,10 @@ int main(int argc, char** argv) {
     argc = kept;
     if (suite == "issue12") {
         rtlab::bench::register_issue12_benchmarks();
+    } else if (suite == "grid2") {
+        rtlab::bench::register_grid2_benchmarks();
+    } else if (suite == "kdtree") {
+        rtlab::bench::register_kdtree_benchmarks();
     } else {
         rtlab::bench::register_intersect_benchmarks();
         rtlab::bench::register_roots_benchmarks();

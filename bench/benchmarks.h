@@ -14,6 +14,9 @@ bool quick_mode();
 /// every registry row except brute force, with default parameters.
 std::vector<std::string> bench_specs();
 
+/// True when --accel named the specs (bench_specs() is then exactly those).
+bool specs_named();
+
 /// intersect/<prim>/<method>/<precision>/<ray set>: ns per test and error rates against CGAL.
 void register_intersect_benchmarks();
 
@@ -32,6 +35,12 @@ void register_embree_benchmarks();
 /// issue12/trace/... and issue12/build/...: issue 12's target table (issue12_bench.cpp); only
 /// with `--suite issue12`.
 void register_issue12_benchmarks();
+/// Issue 16's two-level grid targets and cost-model rows (bench/grid2_bench.cpp).
+void register_grid2_benchmarks();
+
+/// kdtree/trace/... and kdtree/build/...: issue 16's kd-tree targets (kdtree_bench.cpp); only
+/// with `--suite kdtree`.
+void register_kdtree_benchmarks();
 
 /// Embree's rows of the issue-12 suite (embree_issue12.cpp); registers nothing without Embree.
 void register_issue12_embree_benchmarks();

@@ -97,13 +97,13 @@ inline Truth answer(const MethodInput<M>& in, std::size_t i, std::size_t& tests)
 
 /// The error side of one benchmark, computed on its first run.
 struct ErrorStats {
-    double rays = 0, false_hit_rate = 0, false_miss_rate = 0, max_rel = 0, median_rel = 0;
-    double tests_per_ray = 0;
+    double rays = 0, false_hit_rate = 0, false_miss_rate = 0, wrong_t_rate = 0, max_rel = 0;
+    double median_rel = 0, tests_per_ray = 0;
 };
 
 template <class M>
 ErrorStats error_stats(const MethodInput<M>& in) {
-    xcheck::Accumulator acc(IntersectionMethod<M>);
+    xcheck::Accumulator acc(xcheck::t_tolerance<typename M::Scalar>(), IntersectionMethod<M>);
     std::size_t tests = 0;
     for (std::size_t i = 0; i < in.rays.size(); ++i) {
         const Truth a = answer(in, i, tests);
@@ -114,6 +114,7 @@ ErrorStats error_stats(const MethodInput<M>& in) {
     return {static_cast<double>(row.rays),
             static_cast<double>(row.false_hit) / n,
             static_cast<double>(row.false_miss) / n,
+            static_cast<double>(row.wrong_t) / n,
             row.max_rel_t_err,
             row.median_rel_t_err,
             static_cast<double>(tests) / n};
@@ -153,6 +154,7 @@ void bm_method(benchmark::State& state, const std::string& key, std::uint8_t set
     state.counters["false_hit_rate"] = err.false_hit_rate;
     state.counters["false_miss_rate"] = err.false_miss_rate;
     if constexpr (IntersectionMethod<M>) {  // no t for hit/no-hit methods (Segura-Feito)
+        state.counters["wrong_t_rate"] = err.wrong_t_rate;
         state.counters["max_rel_t_err"] = err.max_rel;
         state.counters["median_rel_t_err"] = err.median_rel;
     }

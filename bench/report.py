@@ -5,7 +5,8 @@ Runs `rtlab_bench --benchmark_out_format=json` (or reads an existing JSON file) 
 the markers `<!-- report:begin -->` and `<!-- report:end -->` of the Markdown file (appended when
 absent, so hand-written sections survive):
   - error against run time for the intersection methods: a table and a Pareto plot per primitive
-    kind (x: ns per test, y: false hit + false miss rate, one point per method x precision);
+    kind (x: ns per test, y: false hit + false miss + wrong t rate, one point per method x
+    precision);
   - root finders: a table per surface and one Pareto plot (y: median relative t error);
   - Mrays/s per structure, scene and ray kind, with Embree's rows (trace/embree:*) as reference;
   - scaling: build time (and trace time, when the run has a size sweep) against primitive count,
@@ -20,7 +21,10 @@ missing from the run is skipped with a note.
 With --suite issue12 it runs `rtlab_bench --suite issue12` instead and writes issue 12's target
 table (measure | target | measured ratio | status, per-structure tables, the headline) between
 `<!-- issue12:begin -->` and `<!-- issue12:end -->` (bench/report_issue12.py), leaving the rest
-of the file alone.
+of the file alone. With --suite grid2 it runs `rtlab_bench --suite grid2` and writes issue 16's
+two-level grid targets, build times and predicted-against-measured cost table between
+`<!-- grid2:begin -->` and `<!-- grid2:end -->` (bench/report_grid2.py), plus
+docs/plots/cost-model-scatter.png.
 
 Example: python3 bench/report.py --bench build/release/bench/rtlab_bench --quick \\
              --out docs/results.md --plots docs/plots
@@ -38,6 +42,7 @@ import sys
 import tempfile
 import time
 
+import report_grid2
 import report_issue12
 from report_common import (
     import_pyplot,
@@ -96,7 +101,8 @@ class Report:
             "(`crosscheck/ray_sets.h`: random, edge-aimed, grazing, far; spheres and implicit "
             "surfaces have no edges) and is compared with the exact answer of the same oracle as "
             "`rtlab crosscheck` (CGAL, GMP, MPFR), computed once outside the timing. Failure = "
-            "false hit + false miss, per ray; ns/test is the mean over the sets of single-thread "
+            "false hit + false miss + wrong t (both hit, relative t error above 2^-10 in float, "
+            "2^-20 in double: another surface), per ray, as `rtlab crosscheck` counts it; ns/test is the mean over the sets of single-thread "
             "time per ray-primitive test (triangles: a ray against every triangle of a closed "
             "352-triangle mesh, closest hit). Rates come from `rays` rays per set.", "")
         # name: intersect/<prim>/<method>/<precision>/<set>
@@ -110,16 +116,19 @@ class Report:
         for prim, methods in kinds.items():
             self.add(f"### {prim}", "")
             self.add("| method | precision | ns/test | fail random | fail edge | fail grazing | "
-                     "fail far | false hit | false miss | median rel t err | max rel t err |",
-                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+                     "fail far | false hit | false miss | wrong t | median rel t err | "
+                     "max rel t err |",
+                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
             labels, xs, ys = [], [], []
             for (method, prec), sets in methods.items():
                 ns = [num(r, "ns/test") for r in sets.values()]
                 ns = [v for v in ns if v is not None]
                 fail = {s: (num(r, "false_hit_rate") or 0) + (num(r, "false_miss_rate") or 0)
-                        for s, r in sets.items()}
+                        + (num(r, "wrong_t_rate") or 0) for s, r in sets.items()}
                 fh = sum(num(r, "false_hit_rate") or 0 for r in sets.values()) / len(sets)
                 fm = sum(num(r, "false_miss_rate") or 0 for r in sets.values()) / len(sets)
+                has_t = any(num(r, "wrong_t_rate") is not None for r in sets.values())
+                wt = sum(num(r, "wrong_t_rate") or 0 for r in sets.values()) / len(sets)
                 meds = [num(r, "median_rel_t_err") for r in sets.values()]
                 maxs = [num(r, "max_rel_t_err") for r in sets.values()]
                 meds = [v for v in meds if v is not None]
@@ -130,11 +139,12 @@ class Report:
                 self.add(f"| {method} | {prec} | {fmt(mean_ns)} | "
                          + " | ".join(fmt_rate(fail.get(s)) if s in fail else "n/a"
                                       for s in SETS)
-                         + f" | {fmt_rate(fh)} | {fmt_rate(fm)} | {fmt(med)} | {fmt(mx)} |")
+                         + f" | {fmt_rate(fh)} | {fmt_rate(fm)} | "
+                         + (fmt_rate(wt) if has_t else "-") + f" | {fmt(med)} | {fmt(mx)} |")
                 if mean_ns is not None:
                     labels.append(f"{method} {prec}")
                     xs.append(mean_ns)
-                    ys.append(fh + fm)
+                    ys.append(fh + fm + wt)
             self.add("")
             rays = [num(r, "rays") for sets in methods.values() for r in sets.values()]
             rays = [v for v in rays if v]
@@ -146,7 +156,8 @@ class Report:
                 path = os.path.join(self.plots, f"pareto-{prim}.png")
                 pareto_plot(self.plt, path, f"{prim}: failure rate against time per test",
                             "ns per ray-primitive test (log)",
-                            "false hit + false miss rate (log; all ray sets)", labels, xs, ys,
+                            "false hit + false miss + wrong t rate (log; all ray sets)", labels,
+                            xs, ys,
                             prov_caption(self.prov), floor)
                 self.image(path, f"Pareto plot, {prim}")
 
@@ -164,7 +175,8 @@ class Report:
             "refined by 256-bit MPFR bisection to < 2^-110 relative, then rounded to double. "
             "newton_kK caps Newton (bisection-safeguarded) at K iterations per bracket; bisection "
             "is the plain sign-change baseline (16 march steps). Missed root = the exact "
-            "polynomial has a root in the window and the finder reports none.", "")
+            "polynomial has a root in the window and the finder reports none; wrong t = a root "
+            "more than 2^-10 (float) / 2^-20 (double) relative from the exact first root.", "")
         surfaces = {}
         for name, r in fam.items():
             parts = name.split("/")
@@ -180,12 +192,14 @@ class Report:
                                  squeeze=False)
         for col, (surface, items) in enumerate(surfaces.items()):
             self.add(f"### {surface}", "")
-            self.add("| finder | precision | ns/ray | missed roots | false hits | "
-                     "median rel t err | max rel t err |", "|---|---|---:|---:|---:|---:|---:|")
+            self.add("| finder | precision | ns/ray | missed roots | false hits | wrong t | "
+                     "median rel t err | max rel t err |",
+                     "|---|---|---:|---:|---:|---:|---:|---:|")
             for finder, prec, r in items:
                 self.add(f"| {finder} | {prec} | {fmt(num(r, 'ns/ray'))} | "
                          f"{fmt_rate(num(r, 'missed_root_rate'))} | "
                          f"{fmt_rate(num(r, 'false_hit_rate'))} | "
+                         f"{fmt_rate(num(r, 'wrong_t_rate'))} | "
                          f"{fmt(num(r, 'median_rel_t_err'))} | {fmt(num(r, 'max_rel_t_err'))} |")
             self.add("")
             for row, (metric, ylabel) in enumerate(metrics):
@@ -355,21 +369,35 @@ class Report:
             return
         self.add("Least-squares fit of log(time) = a + k log(n) per series: k is the exponent "
                  "(1 = linear; n log n fits k slightly above 1 over a short range).", "")
-        plt = self.plt
-        panels = [("build", series, "build time (ms)")]
-        if trace:
-            panels.append(("trace", trace, "ns per ray"))
-        else:
+        if not trace:
             self.add("_Trace time against primitive count: no trace benchmark with a `prims` "
                      "counter over two or more sizes in this run._", "")
-        fig, axes = plt.subplots(len(panels), 1, figsize=(10.5, 8 * len(panels)), dpi=110,
-                                 squeeze=False)
-        axes = [[ax[0] for ax in axes]]
         self.add("| family | series | sizes | exponent k | time at largest n |",
                  "|---|---|---:|---:|---:|")
-        cmap = plt.get_cmap("tab20")
-        for ax, (fam, data, ylabel) in zip(axes[0], panels):
-            for si, (key, pts) in enumerate(sorted(data.items())):
+        # Small multiples: one panel per scene family and ray kind (build: per scene), one line
+        # per structure in it, the same colour for a structure in every panel, one shared legend.
+        panels = {}
+        for (accel, scene, threads), pts in series.items():
+            label = accel if threads == "threads:1" else f"{accel} ({threads.split(':')[-1]} thr)"
+            panels.setdefault(("build", scene), []).append((accel, label, threads, pts))
+        for (accel, family, kind), pts in trace.items():
+            panels.setdefault(("trace", family, kind), []).append((accel, accel, kind, pts))
+        accels = sorted({a for items in panels.values() for a, _, _, _ in items})
+        short = {a: a.split(",")[0] for a in accels}
+        if len(set(short.values())) < len(accels):
+            short = {a: a for a in accels}
+        cmap = self.plt.get_cmap("tab10" if len(accels) <= 10 else "tab20")
+        color = {a: cmap(i % cmap.N) for i, a in enumerate(accels)}
+        plt = self.plt
+        ncols = min(3, len(panels))
+        nrows = (len(panels) + ncols - 1) // ncols
+        fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, 4.2 * nrows + 1.2),
+                                 dpi=110, squeeze=False)
+        for pi, (pkey, items) in enumerate(sorted(panels.items())):
+            ax = axes[pi // ncols][pi % ncols]
+            fam = pkey[0]
+            unit = "ms" if fam == "build" else "ns/ray"
+            for accel, label, sub, pts in sorted(items, key=lambda it: it[1]):
                 pts = sorted(p for p in pts if p[0] > 0 and p[1] > 0)
                 if not pts:
                     continue
@@ -382,22 +410,38 @@ class Report:
                     mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
                     sxx = sum((x - mx) ** 2 for x in lx)
                     k = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx
-                label = "/".join(key) + (f" (k={k:.2f})" if k is not None else "")
-                ax.plot(xs, ys, marker="o", color=cmap(si % 20), label=label,
-                        linestyle="--" if str(key[0]).startswith("embree") else "-")
-                unit = "ms" if fam == "build" else "ns/ray"
-                self.add(f"| {fam} | {'/'.join(key)} | {len(pts)} | "
+                dashed = accel.startswith("embree") or (fam == "build" and sub != "threads:1")
+                ax.plot(xs, ys, marker="s" if fam == "build" and sub != "threads:1" else "o",
+                        markersize=3, color=color[accel], linestyle="--" if dashed else "-")
+                key = "/".join((accel,) + tuple(pkey[1:]) + ((sub,) if fam == "build" else ()))
+                self.add(f"| {fam} | {key} | {len(pts)} | "
                          f"{fmt(k) if k is not None else '-'} | {fmt(ys[-1])} {unit} |")
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlabel("primitives (log)")
-            ax.set_ylabel(ylabel + " (log)")
-            ax.set_title(f"{fam} time against primitive count (k = fitted exponent)")
+            ax.set_xlabel("primitives (log)", fontsize=8)
+            ax.set_ylabel(("build time (ms)" if fam == "build" else "ns per ray") + " (log)",
+                          fontsize=8)
+            ax.set_title(" / ".join(pkey), fontsize=9)
+            ax.tick_params(labelsize=7)
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.12))
+        for pi in range(len(panels), nrows * ncols):
+            axes[pi // ncols][pi % ncols].axis("off")
+        from matplotlib.lines import Line2D
+        handles = [Line2D([], [], color=color[a], marker="o", markersize=4,
+                          linestyle="--" if a.startswith("embree") else "-", label=short[a])
+                   for a in accels]
+        if series:
+            handles.append(Line2D([], [], color="grey", marker="s", markersize=4,
+                                  linestyle="--", label="build with 2+ threads"))
+        fig.legend(handles=handles, loc="lower center", ncol=min(5, len(handles)), fontsize=8,
+                   bbox_to_anchor=(0.5, 0.02), frameon=False)
+        fig.suptitle("Time against primitive count, log-log (k per series in the table)",
+                     fontsize=11)
         self.add("")
-        fig.text(0.01, 0.005, prov_caption(self.prov), fontsize=7, color="dimgrey")
-        fig.tight_layout(rect=(0, 0.06, 1, 1))
+        legend_rows = (len(handles) + 4) // 5
+        fig.text(0.01, 0.003, prov_caption(self.prov), fontsize=7, color="dimgrey")
+        fig.tight_layout(rect=(0, (0.35 + 0.2 * legend_rows) / (4.2 * nrows + 1.2) + 0.01, 1,
+                               0.97))
         path = os.path.join(self.plots, "scaling.png")
         fig.savefig(path)
         plt.close(fig)
@@ -416,8 +460,9 @@ class Report:
             self.add(f"_No heat maps (`{self.heat_dir}/heat-<accel>.png`, made by `rtlab render "
                      "--aov heatmap`) found: section skipped._", "")
             return
-        self.add("Nodes visited per pixel (the renderer's heat-map AOV), one image per structure, "
-                 f"copied from `{self.heat_dir}/`.", "")
+        self.add("Nodes visited plus primitive tests per pixel (the renderer's heat-map AOV, "
+                 "eye rays; the colour bar at the bottom of each image carries its values), one "
+                 f"image per structure, copied from `{self.heat_dir}/`.", "")
         self.add("| structure | heat map |", "|---|---|")
         for accel, src in found:
             dst = os.path.join(self.plots, f"heat-{accel}.png")
@@ -483,6 +528,7 @@ def synthetic():
                         "ns/test": 10.0 + 3 * mi + 2 * pi, "rays": 1000.0,
                         "false_hit_rate": 0.0 if pi else 0.01 / (mi + 1),
                         "false_miss_rate": 0.002 if mi == 0 and pi == 0 else 0.0,
+                        "wrong_t_rate": 0.003 if mi == 0 and pi == 0 else 0.0,
                         "max_rel_t_err": 1e-3 / (1 + 1e6 * pi), "median_rel_t_err": 1e-8})
     for f_i, f in enumerate(["closed_form", "newton_k4", "bisection"]):
         for p in ("float", "double"):
@@ -516,6 +562,9 @@ def self_test(plt):
         "intersector table": "### triangle" in text and "| watertight | double |" in text,
         "roots table": "### torus" in text,
         "structures table": "**embree:medium**" in text,
+        # fail = false hit 1% + false miss 0.2% + wrong t 0.3% on every set
+        "wrong t counted as failure": "| moller_trumbore | float | 10 | 1.5% | 1.5% | 1.5% | "
+        "1.5% | 1% | 0.2% | 0.3% |" in text,
         "scaling fit k=1": "| build | bvh:sweep,max_leaf=4,ct=1,ci=1/soup/threads:1 | 3 | 1 |"
         in text,
         "heat maps skipped": "No heat maps" in text,
@@ -550,8 +599,10 @@ def main():
                     help="rtlab_bench executable to run (ignored with --json)")
     ap.add_argument("--quick", action="store_true", help="pass --quick to rtlab_bench")
     ap.add_argument("--filter", default="", help="--benchmark_filter regex for rtlab_bench")
-    ap.add_argument("--suite", default="all", choices=["all", "issue12"],
-                    help="issue12: run rtlab_bench --suite issue12 and write the target table")
+    ap.add_argument("--suite", default="all", choices=["all", "issue12", "grid2"],
+                    help="issue12: run rtlab_bench --suite issue12 and write the target table; "
+                    "grid2: run --suite grid2 and write issue 16's grid and cost-model block and "
+                    "plot")
     ap.add_argument("--cpu", action="store_true",
                     help="with --suite issue12: one-thread rows timed by CPU time (shared machine)")
     ap.add_argument("--headline", action="store_true",
@@ -632,6 +683,13 @@ def main():
         if args.headline:
             print("\n".join(report_issue12.Issue12(rows, args.cpu).headline()))
         print(f"report: wrote the issue12 table into {args.out}", file=sys.stderr)
+        return 0
+    if args.suite == "grid2":
+        lines = report_grid2.section(load_rows(data),
+                                     prov_line(prov) + f" Wall time of the run: {wall}.",
+                                     args.plots, plt)
+        write_markdown(args.out, "\n".join(lines) + "\n", report_grid2.BEGIN, report_grid2.END)
+        print(f"report: wrote the grid2 block into {args.out}", file=sys.stderr)
         return 0
     os.makedirs(args.plots, exist_ok=True)
     rep = Report(load_rows(data), prov, args.out, args.plots, args.heatmaps, plt)

@@ -54,7 +54,7 @@ void bm_roots(benchmark::State& state, Finder finder) {
         return implicit_intersect(prepared[i], rays[i], finder);
     };
 
-    xcheck::Accumulator acc;
+    xcheck::Accumulator acc(xcheck::t_tolerance<T>());
     std::size_t oracle_hits = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const auto h = solve(i);
@@ -83,6 +83,7 @@ void bm_roots(benchmark::State& state, Finder finder) {
     state.counters["missed_root_rate"] = static_cast<double>(row.false_miss) /
                                          static_cast<double>(std::max<std::size_t>(1, oracle_hits));
     state.counters["false_hit_rate"] = static_cast<double>(row.false_hit) / n;
+    state.counters["wrong_t_rate"] = static_cast<double>(row.wrong_t) / n;
     state.counters["max_rel_t_err"] = row.max_rel_t_err;
     state.counters["median_rel_t_err"] = row.median_rel_t_err;
 }
@@ -101,7 +102,7 @@ void register_surface() {
         }
     };
     add("closed_form", [](const Polynomial<T, 4>& p) -> std::optional<T> {
-        const RealRoots<T, 4> r = solve_closed_form(p);
+        const RealRoots<T, 4> r = solve_closed_form_unit(p);
         T u;
         return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
     });

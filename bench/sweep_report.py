@@ -2,7 +2,8 @@
 `bench/report.py --sweep T.json`: per scene a table (Mrays/s, nodes/ray and prims/ray per ray
 kind, build ms, bytes/prim, SAH cost) and a throughput bar plot; per parameter that varies with
 the other parameters of its structure fixed, line plots of Mrays/s and SAH cost against it; the
-failed and missing cases. Every table and plot names the sweep, git revision, build, compiler,
+failed and missing cases; the renders (table with image links) and the cross-checks (agreement
+table and error against run time per primitive kind). Every table and plot names the sweep, git revision, build, compiler,
 host and CPU from the results' provenance.
 """
 import os
@@ -169,6 +170,78 @@ def _sweep_section(lines, plt, plots, cases, prov):
         lines += [f"![{structure}: {key}]({path})", ""]
 
 
+def _render_section(lines, cases, table_path):
+    renders = [c for c in cases if c.get("type") == "render"]
+    if not renders:
+        return
+    folder = os.path.dirname(table_path) or "."
+    lines += ["## Renders", "",
+              "One render per scene, structure and AOV; Mrays/s over every ray the renderer "
+              "traced (eye, shadow, reflected, refracted); render time excludes the build; "
+              "`image_hash` is the same on every machine and thread count for the same image.", "",
+              "| scene | structure | aov | size | rays | Mrays/s | render ms | build ms | image |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for c in renders:
+        if c["status"] != "done":
+            lines.append(f"| {c['scene']} | `{c['spec']}` | {c['kind']} | | | failed | | | |")
+            continue
+        img = os.path.join(folder, c["image"])
+        lines.append(f"| {c['scene']} | `{c['spec']}` | {c['kind']} | {c['width']}x{c['height']} | "
+                     f"{c['rays']} | {fmt(c['mrays_per_s'])} | {fmt(c['render_ms'])} | "
+                     f"{fmt(c['build_ms'])} | [{c['image_hash']}]({img}) |")
+    lines.append("")
+
+
+def _crosscheck_section(lines, plt, plots, cases, prov):
+    xs = [c for c in cases if c.get("type") == "crosscheck"]
+    if not xs:
+        return
+    lines += ["## Cross-checks against the exact oracle", "",
+              "One row per method and precision (`rtlab crosscheck`): rays whose answer is the "
+              "exact one (CGAL: same hit/miss and, for hits, t within the stated relative "
+              "tolerance), hits with t beyond it (wrong surface), false hits and misses, relative "
+              "error of t over rays both call a hit, ns per test (single thread, set-up "
+              "excluded).", "",
+              "| prim | method | precision | rays | agree | wrong t | false hit | false miss | "
+              "max rel t | median rel t | ns/test |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for c in xs:
+        if c["status"] != "done":
+            lines.append(f"| {c['prim']} | {c['methods']} | {c['kind']} | failed: "
+                         f"{c.get('error', '?')} | | | | | | | |")
+            continue
+        lines.append(f"| {c['prim']} | {c['methods']} | {c['kind']} | {c['rays']} | {c['agree']} | "
+                     f"{c.get('wrong_t', '-') if c.get('max_rel_t_err') is not None else '-'} | "
+                     f"{c['false_hit']} | {c['false_miss']} | {fmt(c.get('max_rel_t_err'))} | "
+                     f"{fmt(c.get('median_rel_t_err'))} | {fmt(c['ns_per_test'])} |")
+    lines.append("")
+    if not plots or plt is None:
+        return
+    for prim in sorted({c["prim"] for c in xs}):
+        done = [c for c in xs if c["prim"] == prim and c["status"] == "done"]
+        if not done:
+            continue
+        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        for i, c in enumerate(done):
+            wrong = (c["rays"] - c["agree"]) / c["rays"]
+            ax.scatter(c["ns_per_test"], max(wrong, 1e-7),
+                       marker="o" if c["kind"] == "float" else "s")
+            # Alternate label sides so neighbouring points (float and double) stay readable.
+            ax.annotate(f"{c['methods']} ({c['kind']})", (c["ns_per_test"], max(wrong, 1e-7)),
+                        fontsize=7, xytext=(4, 4 if i % 2 == 0 else -10),
+                        textcoords="offset points")
+        ax.set_yscale("log")
+        ax.set_xlabel("ns per test")
+        ax.set_ylabel("rays disagreeing with the oracle\n(fraction; none drawn at 1e-7)")
+        ax.set_title(f"{prim}: error against run time")
+        fig.text(0.01, 0.01, _caption(prov), fontsize=6)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        path = os.path.join(plots, f"sweep-crosscheck-{_safe(prim)}.png")
+        fig.savefig(path)
+        plt.close(fig)
+        lines += [f"![{prim}: error against run time]({path})", ""]
+
+
 def sweep_report(table, table_path, plots, plt, title=None):
     """Markdown of a merged sweep table (dict from T.json); plots go to `plots` (plt may be None
     for tables only)."""
@@ -182,19 +255,24 @@ def sweep_report(table, table_path, plots, plt, title=None):
              f"CPU: {prov['cpu']}; hosts: {prov['hosts']}; started {prov['date']}.", ""]
     if plots and plt is not None:
         os.makedirs(plots, exist_ok=True)
+    traces = [c for c in cases if c.get("type", "trace") == "trace"]
     scenes = {}
-    for c in cases:
+    for c in traces:
         scenes.setdefault(c["scene"], []).append(c)
     for scene, sc in scenes.items():
         _scene_section(lines, plt, plots, scene, sc, prov)
-    _sweep_section(lines, plt, plots, cases, prov)
+    _sweep_section(lines, plt, plots, traces, prov)
+    _render_section(lines, cases, table_path)
+    _crosscheck_section(lines, plt, plots, cases, prov)
     failed = [c for c in cases if c["status"] != "done"]
     if failed or table.get("missing"):
         lines += ["## Failed and missing cases", ""]
         for c in failed:
-            lines.append(f"- failed: `{c['case']}` {c['scene']} `{c['spec']}` [{c['methods']}] "
+            lines.append(f"- failed: `{c['case']}` {c['scene']} `{c.get('spec', c.get('prim'))}` "
+                         f"[{c['methods']}] "
                          f"{c['kind']}: {c.get('error', '?')}")
         for m in table.get("missing", []):
-            lines.append(f"- missing: `{m['case']}` {m['scene']} `{m['spec']}` {m['kind']}")
+            lines.append(f"- missing: `{m['case']}` {m.get('type', 'trace')} {m['scene']} "
+                         f"`{m['spec']}` {m['kind']}")
         lines.append("")
     return "\n".join(lines)

@@ -4,13 +4,16 @@
 // Counters: rays/s (timed loop); nodes/ray and prims/ray from a separate counting pass, so
 // counting never perturbs the timing; prims, build_ms and bytes/prim over all primitive sets of
 // the scene; sah_cost for single-set scenes only (per-set values of mixed scenes such as mount
-// are not comparable, so the counter is absent there).
+// are not comparable, so the counter is absent there); cost_model, measured_cost and (BVHs over
+// triangles) epo as `rtlab trace --stats` prints them.
 #include "accel/any_accel.h"
+#include "accel/cost_model.h"
 #include "bench/benchmarks.h"
 #include "bench/trace_fixture.h"
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -53,6 +56,19 @@ void bm_trace(benchmark::State& state, std::string accel, std::string scene, Ray
     state.counters["bytes/prim"] = bytes / static_cast<double>(t.primitive_count());
     if (infos.size() == 1) {
         state.counters["sah_cost"] = infos.front().sah_cost;
+    }
+    // The one cost model (accel/cost_model.h) with the spec's ct and ci, and the measured cost.
+    const CostParams p = cost_params(parse_accel_spec(t.accel_spec()));
+    double model = 0, epo = -1;
+    for (const auto& [expected, e] : t.cost_figures(p, true)) {
+        model += expected.cost(p);
+        epo = std::max(epo, e);
+    }
+    state.counters["cost_model"] = model;
+    state.counters["measured_cost"] =
+        measured_cost(p, state.counters["nodes/ray"], state.counters["prims/ray"]);
+    if (epo >= 0) {
+        state.counters["epo"] = epo;
     }
 }
 

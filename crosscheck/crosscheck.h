@@ -29,9 +29,13 @@ struct Row {
     std::string precision;        ///< "float" or "double"
     std::string set = "all";      ///< ray set name, "all" for the total
     std::size_t rays = 0;         ///< rays traced
-    std::size_t agree = 0;        ///< rays whose hit/miss answer equals the oracle's
+    std::size_t agree = 0;        ///< rays answered exactly: the oracle's hit/miss and, for a
+                                  ///< hit, t within t_tol relative (hit/miss only without t)
+    std::size_t wrong_t = 0;      ///< both hit, t off by more than t_tol (another surface) or NaN
     std::size_t false_hit = 0;    ///< method hit, oracle says miss
     std::size_t false_miss = 0;   ///< method missed, oracle says hit
+    bool has_t = true;            ///< the method reports t (false: hit/no-hit only)
+    double t_tol = 0;             ///< the relative t tolerance of agree (t_tolerance<T>())
     double max_rel_t_err = 0;     ///< over rays both call a hit; NaN when the method has no t
     double median_rel_t_err = 0;  ///< same, median
     double ns_per_test = 0;       ///< one ray-primitive test on set-up ray data, single thread

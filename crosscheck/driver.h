@@ -226,14 +226,18 @@ std::vector<RayDataOf<M>> precompute_all(const std::vector<Ray<typename M::Scala
 /// (with by_set) by one row per set, in the order the sets were added.
 class MethodRows {
 public:
-    /// has_t as for Accumulator (false for hit/no-hit methods).
-    MethodRows(
-        std::string prim, std::string method, std::string precision, bool by_set, bool has_t = true)
+    /// t_tol and has_t as for Accumulator (has_t false for hit/no-hit methods).
+    MethodRows(std::string prim,
+               std::string method,
+               std::string precision,
+               double t_tol,
+               bool by_set,
+               bool has_t = true)
         : prim_(std::move(prim))
         , method_(std::move(method))
         , precision_(std::move(precision))
         , by_set_(by_set)
-        , all_(has_t) {}
+        , all_(t_tol, has_t) {}
 
     /// One set: its accumulator, the wall time of its test pass and the tests that pass made,
     /// and the set-up timing of its rays.
@@ -311,7 +315,7 @@ void run_case_sets(std::string_view prim,
                    bool by_set,
                    std::vector<Row>& rows) {
     using T = typename M::Scalar;
-    MethodRows out(std::string(prim), method, precision_name<T>(), by_set);
+    MethodRows out(std::string(prim), method, precision_name<T>(), t_tolerance<T>(), by_set);
     for (const Set& set : sets) {
         std::vector<typename M::Prepared> prepared;
         std::vector<Ray<T>> rays;
@@ -323,7 +327,7 @@ void run_case_sets(std::string_view prim,
         }
         SetupTiming setup;
         const std::vector<RayDataOf<M>> data = precompute_all<M>(rays, setup);
-        Accumulator acc;
+        Accumulator acc(t_tolerance<T>());
         for (std::size_t i = 0; i < rays.size(); ++i) {
             const auto hit = intersect_with<M>(prepared[i], rays[i], data[i]);
             acc.add(hit.has_value(), set.oracle[i].hit, hit ? static_cast<double>(hit->t) : 0.0,
@@ -367,13 +371,13 @@ void run_workload_method(std::string_view prim,
         },
         rays.size());
 
-    std::array<Accumulator, NSets> per_set;
+    std::vector<Accumulator> per_set(NSets, Accumulator(t_tolerance<T>()));
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const Truth& tr = w.truth[i];
         per_set[w.samples[i].set].add(res[i].has_value(), tr.hit,
                                       res[i] ? static_cast<double>(res[i]->t) : 0.0, tr.t);
     }
-    Accumulator all;
+    Accumulator all(t_tolerance<T>());
     for (const Accumulator& a : per_set) {
         all.merge(a);
     }

@@ -270,7 +270,8 @@ void run_method(const IndexedMesh& mesh,
     for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
         prims.push_back(M::prepare(mesh.triangle<T>(i)));
     }
-    MethodRows out("triangle", std::string(M::name), precision_name<T>(), opt.by_set, has_t);
+    MethodRows out("triangle", std::string(M::name), precision_name<T>(), t_tolerance<T>(),
+                   opt.by_set, has_t);
     for (std::size_t s = 0; s < sets.size(); ++s) {
         std::vector<Ray<T>> rays;
         for (const Rayf& r : sets[s].rays) {
@@ -301,7 +302,7 @@ void run_method(const IndexedMesh& mesh,
         const double ns =
             std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
                 .count();
-        Accumulator acc(has_t);
+        Accumulator acc(t_tolerance<T>(), has_t);
         for (std::size_t i = 0; i < answers.size(); ++i) {
             acc.add(answers[i].hit, exact[s][i].hit, answers[i].t, exact[s][i].t);
         }

@@ -54,10 +54,6 @@ Scene generate(const Generator& g, GenOptions o) {
                     std::to_string(g.max_size) + "]");
     }
     const std::uint64_t limit = o.memory_limit != 0 ? o.memory_limit : default_memory_limit();
-    if (o.as_mesh && g.counts(o).cones > 0) {
-        throw Error(std::string(g.name) +
-                    ": --as mesh cannot tessellate its cones yet (generate analytic primitives)");
-    }
     check_memory(std::string(g.name) + " --size " + std::to_string(o.size) +
                      (o.as_mesh ? " --tess " + o.tess.to_string() : std::string()),
                  estimate_bytes(g.counts(o)), limit);

@@ -57,7 +57,7 @@ struct Generator {
 
 /// Generates a scene: resolves the default size, refuses sizes outside [min_size, max_size] and
 /// estimates over the memory limit (rtlab::Error, one line, the estimate in the message).
-/// Scenes with cones cannot be generated --as mesh yet (rtlab::Error).
+/// With as_mesh, cones become tess.u triangle pairs around (scene_to_mesh).
 [[nodiscard]] Scene generate(const Generator& g, GenOptions o);
 
 /// Generates by name; throws rtlab::Error listing the names when there is no such generator.

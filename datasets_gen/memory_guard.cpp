@@ -33,6 +33,10 @@ std::string format_bytes(std::uint64_t bytes) {
     return buf;
 }
 
+std::uint64_t memory_limit_mib(std::uint64_t mib) {
+    return mib != 0 ? saturating_mul(mib, std::uint64_t{1} << 20) : default_memory_limit();
+}
+
 void check_memory(std::string_view what, std::uint64_t estimate_bytes, std::uint64_t limit_bytes) {
     if (estimate_bytes > limit_bytes) {
         throw Error(std::string(what) + ": needs about " + format_bytes(estimate_bytes) +

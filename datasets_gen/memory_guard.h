@@ -10,6 +10,9 @@ namespace rtlab::gen {
 /// Half of the physical memory (sysconf pages x page size / 2); 4 GiB when sysconf cannot tell.
 [[nodiscard]] std::uint64_t default_memory_limit();
 
+/// The limit a `--max-memory MIB` option asks for: MIB MiB, or default_memory_limit() for 0.
+[[nodiscard]] std::uint64_t memory_limit_mib(std::uint64_t mib);
+
 /// Human-readable size with a binary unit, e.g. "3.2 GiB" or "512 B".
 [[nodiscard]] std::string format_bytes(std::uint64_t bytes);
 

@@ -44,8 +44,13 @@ constexpr std::array<SpdText, 11> spd_text{{
 
 GenCounts to_gen_counts(const nff::Counts& n, const GenOptions& o, std::size_t polygon_vertices) {
     GenCounts c = sphere_counts(n.spheres, o);
-    c.cones = n.cones;  // cones stay cones: generate() refuses --as mesh for them
+    c.cones = n.cones;
     if (o.as_mesh) {
+        // Open NFF cones: tess.u triangle pairs around (append_cone); polygons: one fan
+        // triangle per vertex.
+        c.cones = 0;
+        c.triangles =
+            saturating_add(c.triangles, saturating_mul(n.cones, 2 * std::uint64_t(o.tess.u)));
         c.triangles = saturating_add(c.triangles, polygon_vertices);
     } else {
         c.polygons = n.polygons + n.patches;

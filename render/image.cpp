@@ -35,6 +35,19 @@ float linear_to_srgb(float v) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+std::size_t clear_non_finite(Image& img) {
+    std::size_t n = 0;
+    for (Vec3f& p : img.pixels) {
+        if (!is_finite(p)) {
+            ++n;
+            for (std::size_t c = 0; c < 3; ++c) {
+                p[c] = std::isfinite(p[c]) ? p[c] : 0.0f;
+            }
+        }
+    }
+    return n;
+}
+
 bool is_supported_image(const std::filesystem::path& file) {
     const std::string ext = lower_extension(file);
     return ext == ".png" || ext == ".exr";

@@ -35,6 +35,10 @@ struct Image {
 /// The sRGB encoding of a linear value, clamped to [0, 1] (IEC 61966-2-1 piecewise curve).
 float linear_to_srgb(float v);
 
+/// Replaces NaN and infinite pixel components by 0 (black), so no image holds them; returns the
+/// number of pixels changed.
+std::size_t clear_non_finite(Image& img);
+
 /// True for the extensions write_image accepts (.png, .exr; case-insensitive).
 bool is_supported_image(const std::filesystem::path& file);
 

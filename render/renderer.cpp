@@ -348,7 +348,7 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
                     v.x = static_cast<float>(counts[i].nodes + counts[i].prims);
                 } else if (hits[i].valid()) {
                     if (r.aov == Aov::depth) {
-                        v = Vec3f{hits[i].t, hits[i].t, hits[i].t};
+                        v = Vec3f{hits[i].t, 1, 0};  // distance, hit weight: resolved below
                     } else {
                         v = surface_at(s, base, hits[i], rays[i]).n * 0.5f +
                             Vec3f{0.5f, 0.5f, 0.5f};
@@ -387,6 +387,14 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
         }
     } else {
         out.image = std::move(grid);
+    }
+    if (r.aov == Aov::depth) {
+        // .x holds the weighted sum of the hit distances, .y the weight of the samples that hit:
+        // the pixel's depth is their mean over the hits, depth_no_hit when no sample hit.
+        for (Vec3f& p : out.image.pixels) {
+            const float d = p.y > 0 ? p.x / p.y : depth_no_hit;
+            p = Vec3f{d, d, d};
+        }
     }
     out.stats.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -24,10 +24,14 @@ namespace rtlab {
 /// What the image shows.
 enum class Aov {
     color,   ///< radiance (linear)
-    depth,   ///< distance from the eye to the first hit (0 for misses)
+    depth,   ///< distance from the eye to the first hit (mean over the pixel's samples that
+             ///< hit); depth_no_hit where no sample hits
     normal,  ///< first hit's normal facing the eye, mapped to 0.5 * n + 0.5 (0 for misses)
     heatmap  ///< false colour of nodes visited + primitive tests of the eye rays, with a legend
 };
+
+/// The depth AOV's value for a pixel none of whose samples hit: negative, never a distance.
+inline constexpr float depth_no_hit = -1.0f;
 
 /// Lower-case name of an AOV ("color", "depth", "normal", "heatmap").
 std::string_view to_string(Aov a);

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace rtlab::nff {
@@ -97,6 +98,9 @@ public:
         const double v = std::strtod(t.text.c_str(), &end);
         if (end != t.text.c_str() + t.text.size() || t.text.empty() || !std::isfinite(v)) {
             fail(t.line, cat("expected a number (", expected, "), found '", t.text, "'"));
+        }
+        if (std::abs(v) > double(std::numeric_limits<float>::max())) {  // scenes are float
+            fail(t.line, cat("number '", t.text, "' (", expected, ") is outside the float range"));
         }
         return v;
     }

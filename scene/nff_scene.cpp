@@ -112,7 +112,7 @@ Document from_scene(const Scene& s) {
     v.from = Vec3d(s.camera.from);
     v.at = Vec3d(s.camera.at);
     v.up = Vec3d(s.camera.up);
-    v.angle = s.camera.fov_deg;
+    v.angle = double(s.camera.fov_deg);
     v.width = s.camera.width;
     v.height = s.camera.height;
     d.records.push_back(v);
@@ -138,11 +138,11 @@ Document from_scene(const Scene& s) {
         const Material& mat = s.materials[m];
         Fill f;
         f.color = Vec3d(mat.color);
-        f.kd = mat.diffuse;
-        f.ks = mat.specular;
-        f.shine = mat.shininess;
-        f.t = mat.transmit;
-        f.ior = mat.ior;
+        f.kd = double(mat.diffuse);
+        f.ks = double(mat.specular);
+        f.shine = double(mat.shininess);
+        f.t = double(mat.transmit);
+        f.ior = double(mat.ior);
         d.records.push_back(f);
     };
     for (const ObjectRef& r : s.order) {
@@ -150,7 +150,7 @@ Document from_scene(const Scene& s) {
             using O = std::decay_t<decltype(o)>;
             if constexpr (std::is_same_v<O, SphereObject>) {
                 fill(o.material);
-                d.records.push_back(Sphere{Vec3d(o.center), o.radius});
+                d.records.push_back(Sphere{Vec3d(o.center), double(o.radius)});
             } else if constexpr (std::is_same_v<O, PolygonObject>) {
                 fill(o.material);
                 Polygon p;
@@ -166,8 +166,8 @@ Document from_scene(const Scene& s) {
                     throw Error("NFF cones have no caps");
                 }
                 fill(o.material);
-                d.records.push_back(
-                    Cone{Vec3d(o.base), o.base_radius, Vec3d(o.apex), o.apex_radius});
+                d.records.push_back(Cone{Vec3d(o.base), double(o.base_radius), Vec3d(o.apex),
+                                         double(o.apex_radius)});
             } else if constexpr (std::is_same_v<O, MeshObject>) {
                 fill(o.material);
                 for (const auto& t : o.mesh.triangles) {

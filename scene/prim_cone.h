@@ -129,11 +129,11 @@ struct ConePrim {
         if (!(length_squared(o.apex - o.base) > 0) || !std::isfinite(length(o.apex - o.base))) {
             (at / "apex").fail("must differ from base (and the axis length be finite)");
         }
-        if (!(o.base_radius >= 0)) {
-            (at / "base_radius").fail("must be >= 0");
+        if (!(o.base_radius >= 0) || !std::isfinite(o.base_radius)) {
+            (at / "base_radius").fail("must be finite and >= 0");
         }
-        if (!(o.apex_radius >= 0)) {
-            (at / "apex_radius").fail("must be >= 0");
+        if (!(o.apex_radius >= 0) || !std::isfinite(o.apex_radius)) {
+            (at / "apex_radius").fail("must be finite and >= 0");
         }
         if (!(o.base_radius > 0 || o.apex_radius > 0)) {
             (at / "base_radius").fail("base_radius and apex_radius must not both be 0");

@@ -4,6 +4,7 @@
 #include "intersect/bounds.h"
 #include "intersect/sphere/sphere.h"
 
+#include <cmath>
 #include <cstdint>
 #include <string_view>
 
@@ -68,8 +69,8 @@ struct SpherePrim {
         if (!is_finite(o.center)) {
             (at / "center").fail("non-finite vector");
         }
-        if (!(o.radius > 0)) {
-            (at / "radius").fail("must be > 0");
+        if (!(o.radius > 0) || !std::isfinite(o.radius)) {
+            (at / "radius").fail("must be finite and > 0");
         }
     }
 };

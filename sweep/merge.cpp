@@ -12,11 +12,16 @@ namespace {
 
 // The table's fixed columns, in order (values missing from a row stay empty).
 const std::vector<std::string> columns{
-    "case",      "index",       "status",        "scene",          "scene_key", "structure",
-    "spec",      "methods",     "sets",          "kind",           "query",     "threads",
-    "ray_count", "repeat",      "primitives",    "rays",           "hits",      "build_ms",
-    "trace_ms",  "mrays_per_s", "accel_bytes",   "bytes_per_prim", "nodes",     "leaves",
-    "max_depth", "sah_cost",    "nodes_per_ray", "prims_per_ray",  "error"};
+    "case", "index", "status", "type", "scene", "scene_key", "structure", "spec", "methods", "sets",
+    "kind", "query", "threads", "ray_count", "repeat", "primitives", "rays", "hits", "build_ms",
+    "trace_ms", "mrays_per_s", "accel_bytes", "bytes_per_prim", "nodes", "leaves", "max_depth",
+    "sah_cost", "nodes_per_ray", "prims_per_ray", "cost_model", "measured_cost",
+    // render cases (kind = AOV)
+    "width", "height", "depth", "render_ms", "eye_rays", "shadow_rays", "reflected_rays",
+    "refracted_rays", "image", "image_hash", "non_finite_pixels",
+    // cross-check cases (methods = the method, kind = the precision)
+    "prim", "agree", "wrong_t", "t_tol", "false_hit", "false_miss", "max_rel_t_err",
+    "median_rel_t_err", "has_setup", "setup_ns_per_ray", "ns_per_test", "error"};
 const std::vector<std::string> prov_columns{"git",   "version", "build",     "compiler",
                                             "host",  "cpu",     "slurm_job", "slurm_task",
                                             "start", "end",     "seed",      "threads_used"};
@@ -79,7 +84,8 @@ MergeOutcome merge_results(const Planned& p, const std::filesystem::path& table)
         nlohmann::json m;
         m["case"] = p.cases[i].id;
         m["index"] = i;
-        m["scene"] = p.sweep.scenes[p.cases[i].scene].label;
+        m["type"] = to_string(p.cases[i].type);
+        m["scene"] = scene_label(p.sweep, p.cases[i]);
         m["spec"] = p.cases[i].spec;
         m["kind"] = p.cases[i].kind;
         missing.push_back(m);

@@ -4,7 +4,11 @@
 #include "accel/any_accel.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "crosscheck/crosscheck.h"
+#include "crosscheck/row_json.h"
 #include "datasets_gen/generators.h"
+#include "render/image.h"
+#include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "sweep/provenance.h"
 #include "trace/measure.h"
@@ -12,6 +16,8 @@
 #include "trace/scene_tracer.h"
 
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <memory>
@@ -88,17 +94,33 @@ nlohmann::json params_of(const std::string& spec) {
     return p;
 }
 
-// Measures case c into j (throws on failure; the caller records the error).
-void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, nlohmann::json& j) {
-    if (!w.scene_error.empty()) {
-        throw Error(w.scene_error);
+// The fields that say what case c is (before anything is measured).
+void describe_case(const Planned& p, const Case& c, nlohmann::json& j) {
+    j["case"] = c.id;
+    j["index"] = c.index;
+    j["type"] = to_string(c.type);
+    j["scene"] = scene_label(p.sweep, c);
+    if (c.type != CaseType::crosscheck) {
+        j["scene_key"] = p.sweep.scenes[c.scene].key;
+        j["spec"] = c.spec;
+        j["structure"] = c.spec.substr(0, c.spec.find(','));
+        j["params"] = params_of(c.spec);
+    } else {
+        j["prim"] = p.sweep.crosschecks[c.entry].prim;
     }
-    auto rays_it = w.rays.find(c.kind);
-    if (rays_it == w.rays.end()) {
-        rays_it =
-            w.rays.emplace(c.kind, make_rays(*w.scene, parse_ray_kind(c.kind), s.ray_count, s.seed))
-                .first;
+    j["methods"] = c.methods.empty() ? "default" : c.methods;
+    j["kind"] = c.kind;
+    if (c.type == CaseType::trace) {
+        j["query"] = c.any_hit() ? "any_hit" : "closest_hit";
+        j["ray_count"] = p.sweep.ray_count;
+        j["repeat"] = p.sweep.repeat;
     }
+    j["threads"] = c.threads;
+}
+
+// Builds the case's structure unless the workspace holds it already (same spec, methods and
+// threads).
+void use_tracer(Workspace& w, const SweepFile& s, const Case& c, int threads) {
     const std::string key = fmt::format("{}|{}|{}", c.spec, c.methods, threads);
     if (w.tracer_key != key) {
         w.tracer.reset();
@@ -110,6 +132,20 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
         w.tracer = std::make_unique<SceneTracer>(*w.scene, setup);
         w.tracer_key = key;
     }
+}
+
+// Measures trace case c into j (throws on failure; the caller records the error).
+void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, nlohmann::json& j) {
+    if (!w.scene_error.empty()) {
+        throw Error(w.scene_error);
+    }
+    auto rays_it = w.rays.find(c.kind);
+    if (rays_it == w.rays.end()) {
+        rays_it =
+            w.rays.emplace(c.kind, make_rays(*w.scene, parse_ray_kind(c.kind), s.ray_count, s.seed))
+                .first;
+    }
+    use_tracer(w, s, c, threads);
     MeasureOptions opt;
     opt.any_hit = c.any_hit();
     opt.repeat = s.repeat;
@@ -137,7 +173,88 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
     if (m.has_stats) {
         j["nodes_per_ray"] = m.nodes_per_ray;
         j["prims_per_ray"] = m.prims_per_ray;
+        j["cost_model"] = m.cost_model;
+        j["measured_cost"] = m.measured_cost;
     }
+}
+
+// FNV-1a over the pixels' float bits: equal images give equal hashes (a render is the same for
+// any thread count), so runs on different machines or schedulers compare case for case.
+std::string image_hash(const Image& img) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const Vec3f& p : img.pixels) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const float v = p[k];
+            std::uint32_t bits = 0;
+            std::memcpy(&bits, &v, sizeof bits);
+            for (int b = 0; b < 4; ++b) {
+                h ^= (bits >> (8 * b)) & 0xffu;
+                h *= 1099511628211ull;
+            }
+        }
+    }
+    return fmt::format("{:016x}", h);
+}
+
+// Renders case c into DIR/images/<id>.png (.exr for depth, which keeps the distances) and
+// records the figures in j.
+void measure_render(Workspace& w, const Planned& p, const Case& c, int threads, nlohmann::json& j) {
+    if (!w.scene_error.empty()) {
+        throw Error(w.scene_error);
+    }
+    use_tracer(w, p.sweep, c, threads);
+    const RenderRows& r = p.sweep.renders[c.entry];
+    RenderSettings rs;
+    rs.width = r.width;
+    rs.height = r.height;
+    rs.max_depth = r.max_depth;
+    rs.aov = parse_aov(c.kind);
+    RenderResult res = render(*w.scene, *w.tracer, rs);
+    j["width"] = r.width;
+    j["height"] = r.height;
+    j["depth"] = r.max_depth;
+    j["image_hash"] = image_hash(res.image);
+    j["non_finite_pixels"] = clear_non_finite(res.image);
+    const std::string image =
+        fmt::format("images/{}.{}", c.id, rs.aov == Aov::depth ? "exr" : "png");
+    std::filesystem::create_directories(p.dir / "images");
+    write_image(res.image, p.dir / image, rs.aov == Aov::color);
+    j["image"] = image;
+    const RenderStats& st = res.stats;
+    j["primitives"] = w.tracer->primitive_count();
+    j["rays"] = st.total();
+    j["eye_rays"] = st.eye;
+    j["shadow_rays"] = st.shadow;
+    j["reflected_rays"] = st.reflected;
+    j["refracted_rays"] = st.refracted;
+    j["hits"] = st.hits;
+    j["build_ms"] = w.tracer->build_ms();
+    j["render_ms"] = st.render_ms;
+    j["mrays_per_s"] =
+        st.render_ms > 0 ? static_cast<double>(st.total()) / (st.render_ms * 1e3) : 0.0;
+}
+
+// Runs cross-check case c (one method, one precision) and records its row in j.
+void measure_crosscheck(const Planned& p, const Case& c, nlohmann::json& j) {
+    const CrosscheckRows& x = p.sweep.crosschecks[c.entry];
+    xcheck::Options opt;
+    opt.methods = {c.methods};
+    opt.f32 = c.kind == "float";
+    opt.f64 = !opt.f32;
+    opt.rays = x.rays;
+    opt.seed = x.seed;
+    const std::vector<xcheck::Row> rows = xcheck::find_prim_check(x.prim)->run(opt);
+    if (rows.size() != 1) {
+        throw Error(fmt::format("crosscheck {} {} {}: {} rows, expected 1", x.prim, c.methods,
+                                c.kind, rows.size()));
+    }
+    const nlohmann::json row = xcheck::row_json(rows.front());
+    for (const auto& [k, v] : row.items()) {
+        if (k != "set" && k != "method") {
+            j[k] = v;
+        }
+    }
+    j["seed"] = x.seed;
 }
 
 void write_shard(const std::filesystem::path& file, const std::vector<nlohmann::json>& lines) {
@@ -187,20 +304,8 @@ ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt)
     for (const Case* c : todo) {
         const int threads = c->threads > 0 ? c->threads : cpus;
         nlohmann::json j;
-        j["case"] = c->id;
-        j["index"] = c->index;
+        describe_case(p, *c, j);
         j["shard"] = k;
-        j["scene"] = p.sweep.scenes[c->scene].label;
-        j["scene_key"] = p.sweep.scenes[c->scene].key;
-        j["spec"] = c->spec;
-        j["structure"] = c->spec.substr(0, c->spec.find(','));
-        j["params"] = params_of(c->spec);
-        j["methods"] = c->methods.empty() ? "default" : c->methods;
-        j["kind"] = c->kind;
-        j["query"] = c->any_hit() ? "any_hit" : "closest_hit";
-        j["threads"] = c->threads;
-        j["ray_count"] = p.sweep.ray_count;
-        j["repeat"] = p.sweep.repeat;
         nlohmann::json pv = prov;
         pv["start"] = utc_now();
         pv["seed"] = p.sweep.seed;
@@ -208,8 +313,16 @@ ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt)
         try {
             const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                             static_cast<std::size_t>(threads));
-            use_scene(w, p.sweep, c->scene);
-            measure_case(w, p.sweep, *c, threads, j);
+            if (c->type == CaseType::crosscheck) {
+                measure_crosscheck(p, *c, j);
+            } else {
+                use_scene(w, p.sweep, c->scene);
+                if (c->type == CaseType::render) {
+                    measure_render(w, p, *c, threads, j);
+                } else {
+                    measure_case(w, p.sweep, *c, threads, j);
+                }
+            }
             j["status"] = "done";
             ++out.done;
         } catch (const std::exception& e) {
@@ -224,12 +337,15 @@ ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt)
         j["provenance"] = pv;
         if (opt.log != nullptr) {
             *opt.log << fmt::format(
-                            "[shard {}] {} {} {} {} {}: {}\n", k, c->id,
-                            p.sweep.scenes[c->scene].label, c->spec,
-                            j["methods"].get<std::string>(), c->kind,
-                            j["status"] == "done"
-                                ? fmt::format("{:.3f} Mrays/s", j["mrays_per_s"].get<double>())
-                                : fmt::format("FAILED: {}", j["error"].get<std::string>()))
+                            "[shard {}] {} {} {} {} {} {}: {}\n", k, c->id, to_string(c->type),
+                            scene_label(p.sweep, *c), c->spec, j["methods"].get<std::string>(),
+                            c->kind,
+                            j["status"] != "done"
+                                ? fmt::format("FAILED: {}", j["error"].get<std::string>())
+                            : c->type == CaseType::crosscheck
+                                ? fmt::format("{} of {} agree", j["agree"].get<std::size_t>(),
+                                              j["rays"].get<std::size_t>())
+                                : fmt::format("{:.3f} Mrays/s", j["mrays_per_s"].get<double>()))
                      << std::flush;
         }
         lines.push_back(std::move(j));

@@ -4,6 +4,7 @@
 #include "accel/any_accel.h"
 #include "base/error.h"
 #include "datasets_gen/generators.h"
+#include "sweep/json_read.h"
 #include "trace/method_families.h"
 #include "trace/ray_gen.h"
 
@@ -17,44 +18,11 @@ namespace rtlab::sweep {
 
 namespace {
 
-using ojson = nlohmann::ordered_json;
+using namespace detail;
 
-const std::set<std::string> top_keys{"name",   "seed",     "scenes", "structures", "methods",
-                                     "rays",   "threads",  "repeat", "warmup",     "stats",
-                                     "robust", "base_dir", "comment"};
-
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-    throw Error(where + ": " + what);
-}
-
-std::int64_t get_int(const ojson& v, const std::string& where, std::int64_t lo, std::int64_t hi) {
-    if (!v.is_number_integer() || v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi) {
-        fail(where, fmt::format("expected a whole number in [{}, {}], got {}", lo, hi, v.dump()));
-    }
-    return v.get<std::int64_t>();
-}
-
-bool get_bool(const ojson& v, const std::string& where) {
-    if (!v.is_boolean()) {
-        fail(where, fmt::format("expected true or false, got {}", v.dump()));
-    }
-    return v.get<bool>();
-}
-
-std::string get_string(const ojson& v, const std::string& where) {
-    if (!v.is_string() || v.get<std::string>().empty()) {
-        fail(where, fmt::format("expected a non-empty string, got {}", v.dump()));
-    }
-    return v.get<std::string>();
-}
-
-// A list or a single value, as a list.
-std::vector<ojson> as_list(const ojson& v) {
-    if (v.is_array()) {
-        return {v.begin(), v.end()};
-    }
-    return {v};
-}
+const std::set<std::string> top_keys{"name",   "seed",    "scenes",     "structures", "methods",
+                                     "rays",   "threads", "repeat",     "warmup",     "stats",
+                                     "robust", "renders", "crosscheck", "base_dir",   "comment"};
 
 SceneSource parse_scene(const ojson& s,
                         const std::string& where,
@@ -314,6 +282,12 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
     }
     if (j.contains("robust")) {
         s.robust = get_bool(j["robust"], at("robust"));
+    }
+    if (j.contains("renders")) {
+        s.renders = parse_renders(j["renders"], at("renders"), s);
+    }
+    if (j.contains("crosscheck")) {
+        s.crosschecks = parse_crosschecks(j["crosscheck"], at("crosscheck"));
     }
     return s;
 }

@@ -26,6 +26,26 @@ struct SceneSource {
     std::filesystem::path path;  ///< the file resolved against the sweep file's folder
 };
 
+/// A `renders` entry: each listed scene rendered with each listed structure spec, for each AOV.
+struct RenderRows {
+    std::vector<std::size_t> scenes;  ///< indices into SweepFile::scenes
+    std::vector<std::string> specs;   ///< canonical specs
+    std::vector<std::string> aovs;    ///< color depth normal heatmap
+    int width = 128;
+    int height = 128;
+    int max_depth = 5;
+};
+
+/// A `crosscheck` entry: methods of one primitive kind in each precision against the exact oracle
+/// (`rtlab crosscheck`), one case per method and precision.
+struct CrosscheckRows {
+    std::string prim;
+    std::vector<std::string> methods;     ///< method names of the kind (every one by default)
+    std::vector<std::string> precisions;  ///< float double
+    std::size_t rays = 10000;
+    std::uint64_t seed = 1;
+};
+
 /// A loaded, validated sweep file.
 struct SweepFile {
     std::string name = "sweep";
@@ -40,6 +60,8 @@ struct SweepFile {
     int warmup = 1;               ///< untimed runs before them
     bool stats = true;            ///< counting pass (nodes/ray, prims/ray)
     bool robust = false;          ///< conservative box tests in traversal
+    std::vector<RenderRows> renders;
+    std::vector<CrosscheckRows> crosschecks;
     /// The file as loaded (comments dropped) plus "base_dir", the folder scene files are
     /// resolved against: what a sweep folder keeps as sweep.json, and how two files compare.
     nlohmann::ordered_json normalized;
@@ -48,6 +70,16 @@ struct SweepFile {
 /// Loads and validates a sweep file; throws rtlab::Error with one line naming the file and the
 /// place ("sweep.json: structures[1].max_leaf: ...").
 SweepFile load_sweep_file(const std::filesystem::path& file);
+
+/// Parses the "renders" list (scenes named by their labels, default all; structures as in
+/// "structures", default the sweep's specs). Throws rtlab::Error naming `where`.
+std::vector<RenderRows> parse_renders(const nlohmann::ordered_json& list,
+                                      const std::string& where,
+                                      const SweepFile& s);
+
+/// Parses the "crosscheck" list. Throws rtlab::Error naming `where`.
+std::vector<CrosscheckRows> parse_crosschecks(const nlohmann::ordered_json& list,
+                                              const std::string& where);
 
 /// Expands one structure entry: a spec string, or {"spec": S, key: value-or-list, ...} whose
 /// lists multiply out (first key outermost). Returns canonical specs; throws rtlab::Error naming

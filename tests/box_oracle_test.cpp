@@ -115,6 +115,7 @@ TEST_CASE("polygon methods against the exact Polygon_2 oracle", "[crosscheck][or
         const Row& c = find_row(rows, "crossing_count", prec);
         const Row& w = find_row(rows, "winding_number", prec);
         CHECK(c.agree == w.agree);
+        CHECK(c.wrong_t == w.wrong_t);
         CHECK(c.false_hit == w.false_hit);
         CHECK(c.false_miss == w.false_miss);
     }
@@ -125,7 +126,11 @@ TEST_CASE("polygon methods against the exact Polygon_2 oracle", "[crosscheck][or
         CHECK(d.median_rel_t_err < 1e-14);  // measured 1.7e-16
         CHECK(d.max_rel_t_err < 1e-5);      // measured 3.8e-7: origins within 1e-6 of the plane
         const Row& f = find_row(rows, m, "float");
-        CHECK(agree_rate(f) >= 0.94);      // measured 95.8%: edge-aimed rays, 1e-7 off the edge
+        // Measured 93.7%: edge-aimed rays 1e-7 off the edge (hit/miss), and 2.1% wrong_t (t off by
+        // more than 2^-10) on the grazing and on-plane sets, where t is ill-conditioned.
+        CHECK(agree_rate(f) >= 0.92);
+        CHECK(f.wrong_t <= f.rays / 30);  // measured 2,147 of 100,000
+        CHECK(find_row(rows, m, "float", "random").wrong_t == 0);
         CHECK(f.median_rel_t_err < 1e-6);  // measured 6.7e-8
         // Away from edges and the plane, float agrees fully (measured 100%).
         CHECK(agree_rate(find_row(rows, m, "float", "random")) >= 0.999);

@@ -68,7 +68,8 @@ TEST_CASE("cone objects: errors name the JSON path", "[scene][cone][errors]") {
           "x.json: objects[0].apex: must differ from base (and the axis length "
           "be finite)");
     CHECK(parse_error(one(R"({"type": "cone", "base": [0, 0, 0], "apex": [0, 0, 1],
-        "base_radius": -1, "apex_radius": 1})")) == "x.json: objects[0].base_radius: must be >= 0");
+        "base_radius": -1, "apex_radius": 1})")) ==
+          "x.json: objects[0].base_radius: must be finite and >= 0");
     CHECK(parse_error(one(R"({"type": "cone", "base": [0, 0, 0], "apex": [0, 0, 1],
         "base_radius": 0, "apex_radius": 0})")) ==
           "x.json: objects[0].base_radius: base_radius and apex_radius must not both be 0");

@@ -3,6 +3,7 @@
 // plan of a mirror-only scene, the heat map legend.
 #include "accel/any_accel.h"
 #include "datasets_gen/generators.h"
+#include "render/heatmap.h"
 #include "render/renderer.h"
 #include "trace/camera.h"
 
@@ -250,9 +251,76 @@ TEST_CASE("AOVs: depth is the hit distance, the heat map has its legend", "[rend
     const RenderResult heat = render_with(s, "bvh:binned", r);
     CHECK(heat.stats.heat_max >= heat.stats.heat_min);
     CHECK(heat.stats.heat_min > 0);
-    // Legend: the bottom row runs from blue (left) to red (right).
-    CHECK(max_component(abs(heat.image.at(0, 15) - Vec3f{0, 0, 1})) < 1e-6f);
-    CHECK(max_component(abs(heat.image.at(15, 15) - Vec3f{1, 0, 0})) < 1e-6f);
+    // Legend: the ramp (the row under the separator) runs from blue (left) to red (right).
+    const int ramp_y = 16 - heatmap_legend(16, 16).rows + 1;
+    CHECK(max_component(abs(heat.image.at(0, ramp_y) - Vec3f{0, 0, 1})) < 1e-6f);
+    CHECK(max_component(abs(heat.image.at(15, ramp_y) - Vec3f{1, 0, 0})) < 1e-6f);
+}
+
+TEST_CASE("depth AOV: a pixel without a hit is depth_no_hit, not depth 0", "[render]") {
+    // A small box in the middle: the corners of the image see nothing.
+    Scene s;
+    s.camera.from = {0, 0, 5};
+    s.camera.at = {0, 0, 0};
+    s.camera.width = 16;
+    s.camera.height = 16;
+    s.materials.push_back(Material{});
+    s.add(BoxObject{Bounds3f{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, 1}}, 0});
+    RenderSettings r;
+    r.aov = Aov::depth;
+    r.spp = 4;
+    const RenderResult depth = render_with(s, "bvh:binned", r);
+    CHECK(depth.image.at(0, 0).x == depth_no_hit);
+    CHECK(depth.image.at(15, 15).x == depth_no_hit);
+    // Where something is hit, the depth is a distance (the box's front face is 4 away), also on
+    // the box's silhouette where only some samples hit (mean over the hits, not over misses).
+    int partial = 0;
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            const float d = depth.image.at(x, y).x;
+            CAPTURE(x, y, d);
+            CHECK((d == depth_no_hit || (d > 3.99f && d < 4.2f)));
+            partial += d > 0 ? 1 : 0;
+        }
+    }
+    CHECK(partial > 0);
+}
+
+TEST_CASE("heat map legend: tick values and caption in the bar", "[render]") {
+    CHECK(heatmap_tick_labels(0, 100) == std::vector<std::string>{"0", "25", "50", "75", "100"});
+    CHECK(heatmap_tick_labels(2, 6) == std::vector<std::string>{"2", "3", "4", "5", "6"});
+    CHECK(heatmap_tick_labels(1, 3) == std::vector<std::string>{"1.0", "1.5", "2.0", "2.5", "3.0"});
+    // A 256 x 256 map from 10 to 90: the legend rows below the ramp carry white text (the tick
+    // values and caption); the image above the legend keeps its colours.
+    Image img(256, 256);
+    for (int y = 0; y < 256; ++y) {
+        for (int x = 0; x < 256; ++x) {
+            img.at(x, y).x = 10.0f + 80.0f * static_cast<float>(x) / 255.0f;
+        }
+    }
+    colour_heatmap(img, 10, 90);
+    const HeatmapLegend l = heatmap_legend(256, 256);
+    REQUIRE(l.labels);
+    const int text_top = 256 - l.rows + 1 + l.ramp;
+    int white = 0;
+    for (int y = text_top; y < 256; ++y) {
+        for (int x = 0; x < 256; ++x) {
+            white += img.at(x, y) == Vec3f{1, 1, 1} ? 1 : 0;
+        }
+    }
+    CHECK(white > 100);
+    // The "10" under the left tick (the tick is the row text_top; the digits start 2 font pixels
+    // below it): white pixels in the first 8 font columns of the digit rows.
+    bool left_number = false;
+    const int glyph_top = text_top + 2 * l.scale;
+    for (int x = 1; x < 1 + 8 * l.scale; ++x) {
+        for (int y = glyph_top; y < glyph_top + 5 * l.scale; ++y) {
+            left_number = left_number || img.at(x, y) == Vec3f{1, 1, 1};
+        }
+    }
+    CHECK(left_number);
+    CHECK(max_component(abs(img.at(0, 0) - false_colour(0))) < 1e-6f);
+    CHECK(max_component(abs(img.at(255, 0) - false_colour(1))) < 1e-6f);
 }
 
 TEST_CASE("per-ray counts add up to the batch counts and keep the hits", "[render][trace]") {

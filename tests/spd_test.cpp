@@ -222,6 +222,7 @@ TEST_CASE("bad NFF fails with the file and line", "[nff]") {
     fails_with("s 0 0 0 -1\n", "x.nff:1: sphere radius must be > 0");
     fails_with("p 3\n0 0 0\n1 0 0\n", "x.nff:3: unexpected end of file");
     fails_with("s 0 0 zero 1\n", "x.nff:1: expected a number");
+    fails_with("s 0 0 0 1e39\n", "x.nff:1: number '1e39' (s radius) is outside the float range");
     fails_with("v\nfrom 0 0 1\nat 0 0 0\nup 0 1 0\nangle 200\nhither 0\nresolution 8 8\n",
                "x.nff:5: angle must be in (0, 180)");
     fails_with("p 2\n0 0 0\n1 0 0\n", "x.nff:1: p vertex count must be an integer");

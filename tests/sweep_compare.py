@@ -5,7 +5,8 @@ Exit 0 when they agree (and, with --failed/--total, hold that many failed and to
 import json
 import sys
 
-IGNORED = {"build_ms", "trace_ms", "trace_ms_runs", "mrays_per_s", "provenance", "shard"}
+IGNORED = {"build_ms", "trace_ms", "trace_ms_runs", "mrays_per_s", "render_ms", "ns_per_test",
+           "setup_ns_per_ray", "provenance", "shard"}
 
 
 def main():

@@ -9,13 +9,19 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
+#include <unistd.h>
 
 using namespace rtlab;
 
 namespace {
 
 sweep::SweepFile load_text(const std::string& text) {
-    const auto file = std::filesystem::temp_directory_path() / "rtlab_sweep_plan_test.json";
+    // CTest runs the test cases as parallel processes: one file per process and call.
+    static int calls = 0;
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("rtlab_sweep_plan_test-" + std::to_string(::getpid()) + "-" +
+                       std::to_string(calls++) + ".json");
     {
         std::ofstream out(file);
         out << text;
@@ -104,4 +110,60 @@ TEST_CASE("sweep files are validated before anything runs", "[sweep]") {
     CHECK_THROWS_AS(load_text(bad("\"scenes\"", "\"scenez\"")), Error);
     CHECK_THROWS_WITH(load_text(bad("\"bins\"", "\"binz\"")),
                       Catch::Contains("structures[0]") && Catch::Contains("binz"));
+}
+
+TEST_CASE("sweep renders and cross-checks expand into their own cases", "[sweep]") {
+    std::string text = three_scenes;
+    text.replace(text.rfind('}'), 1, R"(,
+    "renders": [{"scenes": ["flake,size=2,as=spheres,tess=uv:16x8,seed=1"],
+                 "structures": [{"spec": "bvh:sweep", "max_leaf": [2, 4]}], "aov": ["color", "depth"]}],
+    "crosscheck": [{"prim": "sphere", "methods": ["geometric", "stable"], "rays": 100}]
+})");
+    const sweep::SweepFile s = load_text(text);
+    const std::vector<sweep::Case> cases = sweep::expand_cases(s);
+    REQUIRE(cases.size() == 3 * 7 * 2 + 1 * 2 * 2 + 2 * 2);
+    std::set<std::string> ids;
+    std::size_t renders = 0;
+    std::size_t crosschecks = 0;
+    for (const sweep::Case& c : cases) {
+        ids.insert(c.id);
+        if (c.type == sweep::CaseType::render) {
+            ++renders;
+            CHECK(c.scene == 1);  // the scene named by its label
+            CHECK((c.kind == "color" || c.kind == "depth"));
+            CHECK(c.spec.rfind("bvh:sweep,max_leaf=", 0) == 0);
+        } else if (c.type == sweep::CaseType::crosscheck) {
+            ++crosschecks;
+            CHECK(c.scene == s.scenes.size());
+            CHECK(sweep::scene_label(s, c) == "-");
+            CHECK((c.kind == "float" || c.kind == "double"));
+        }
+    }
+    CHECK(renders == 4);
+    CHECK(crosschecks == 4);
+    CHECK(ids.size() == cases.size());
+    // Default shards: one per scene plus one for the cross-checks; renders join their scene.
+    const auto shards = sweep::deal_shards(s, cases, 0);
+    REQUIRE(shards.size() == 4);
+    for (const auto& shard : shards) {
+        std::set<std::size_t> scenes;
+        for (const std::size_t i : shard) {
+            scenes.insert(cases[i].scene);
+        }
+        CHECK(scenes.size() == 1);
+    }
+    // Unknown labels, AOVs, kinds and methods fail at load time.
+    const auto bad = [&](const std::string& from, const std::string& to) {
+        std::string t = text;
+        t.replace(t.find(from), from.size(), to);
+        return t;
+    };
+    CHECK_THROWS_WITH(load_text(bad("seed=1\"]", "seed=9\"]")),
+                      Catch::Contains("renders[0].scenes"));
+    CHECK_THROWS_WITH(load_text(bad("\"depth\"]", "\"albedo\"]")),
+                      Catch::Contains("renders[0].aov"));
+    CHECK_THROWS_WITH(load_text(bad("\"sphere\"", "\"torus\"")),
+                      Catch::Contains("crosscheck[0].prim"));
+    CHECK_THROWS_WITH(load_text(bad("\"stable\"]", "\"stabel\"]")),
+                      Catch::Contains("crosscheck[0].methods"));
 }

@@ -12,15 +12,15 @@ trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 small=$here/sweeps/small.json
 
-# A full run: exit 1 (some cases failed), 21 done and 3 failed.
+# A full run: exit 1 (some cases failed), 27 done and 3 failed.
 "$RTLAB" sweep run "$small" -o "$tmp/a" 2>"$tmp/a.err"
 rc=$?
 [[ $rc -eq 1 ]] || { cat "$tmp/a.err"; fail "sweep run exited $rc, expected 1 (failed cases)"; }
 "$RTLAB" sweep status "$tmp/a" >"$tmp/a.status" || fail "sweep status"
-grep -q "24 cases: 21 done, 3 failed, 0 missing" "$tmp/a.status" || { cat "$tmp/a.status"; fail "status"; }
+grep -q "30 cases: 27 done, 3 failed, 0 missing" "$tmp/a.status" || { cat "$tmp/a.status"; fail "status"; }
 "$RTLAB" sweep merge "$tmp/a" -o "$tmp/a/merged" >/dev/null || fail "sweep merge"
 head -n 1 "$tmp/a/merged.csv" | grep -q "p_max_leaf" || fail "merged.csv has no p_max_leaf column"
-[[ $(wc -l <"$tmp/a/merged.csv") -eq 25 ]] || fail "merged.csv is not 24 rows and a header"
+[[ $(wc -l <"$tmp/a/merged.csv") -eq 31 ]] || fail "merged.csv is not 30 rows and a header"
 
 # The report: a table per scene and the max_leaf line plot.
 if python3 -c "import matplotlib" 2>/dev/null; then
@@ -32,12 +32,12 @@ fi
 
 # Re-running a finished sweep measures nothing again.
 "$RTLAB" sweep run "$small" -o "$tmp/a" --jobs 2 2>"$tmp/a2.err"
-grep -q "21 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
+grep -q "27 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
 
 # A second folder, two shards at a time and 4 shards: the same table but timings.
 "$RTLAB" sweep run "$small" -o "$tmp/b" --jobs 2 --shards 4 2>/dev/null
 "$RTLAB" sweep merge "$tmp/b" -o "$tmp/b/merged" >/dev/null || fail "merge b"
-python3 "$here/sweep_compare.py" "$tmp/a/merged.json" "$tmp/b/merged.json" --failed 3 --total 24 ||
+python3 "$here/sweep_compare.py" "$tmp/a/merged.json" "$tmp/b/merged.json" --failed 3 --total 30 ||
     fail "runs a and b disagree"
 
 # Interrupt: more rays so the run is still going when SIGINT arrives.
@@ -54,7 +54,7 @@ wait "$pid"
 rc=$?
 n=$(cat "$tmp"/c/results/*.jsonl 2>/dev/null | wc -l)
 [[ $rc -eq 130 ]] || { cat "$tmp/c.err"; fail "interrupted run exited $rc, expected 130 ($n results)"; }
-[[ $n -lt 24 ]] || fail "the run finished before the interrupt; nothing tested"
+[[ $n -lt 30 ]] || fail "the run finished before the interrupt; nothing tested"
 # Every shard file is complete: every line parses (status would fail otherwise).
 "$RTLAB" sweep status "$tmp/c" --json >"$tmp/c.status" || fail "status after the interrupt"
 python3 - "$tmp/c" >"$tmp/c.before" <<'PY' || fail "reading shard files"
@@ -76,7 +76,7 @@ python3 - "$tmp/c/merged.json" <<'PY' || fail "resumed sweep incomplete"
 import json, sys
 t = json.load(open(sys.argv[1]))
 bad = sum(1 for c in t["cases"] if c["status"] != "done")
-assert not t["missing"] and len(t["cases"]) == 24 and bad == 3, (len(t["cases"]), bad, t["missing"])
+assert not t["missing"] and len(t["cases"]) == 30 and bad == 3, (len(t["cases"]), bad, t["missing"])
 PY
 ls "$tmp"/c/results | grep -v '\.jsonl$' | grep -qv '\.tmp-rtlab$' && fail "stray files in results/"
 echo "sweep: local runs, resume and interrupt OK ($(wc -l <"$tmp/c.before") cases kept over the interrupt)"

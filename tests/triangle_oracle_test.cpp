@@ -59,9 +59,10 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
         return r.method == "watertight" ? 1e-4 : 2.5;
     };
     for (const auto& [key, r] : by_key) {
-        CAPTURE(key, r.agree, r.false_hit, r.false_miss, r.max_rel_t_err, r.median_rel_t_err);
+        CAPTURE(key, r.agree, r.wrong_t, r.false_hit, r.false_miss, r.max_rel_t_err,
+                r.median_rel_t_err);
         CHECK(r.rays == opt.rays);
-        CHECK(r.agree + r.false_hit + r.false_miss == r.rays);
+        CHECK(r.agree + r.wrong_t + r.false_hit + r.false_miss == r.rays);
         const double rate = static_cast<double>(r.rays - r.agree) / static_cast<double>(r.rays);
         CHECK(rate <= max_disagreement.at(key));
         if (r.method == "segura_feito") {
@@ -73,6 +74,16 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
     }
     CHECK(by_key.at("watertight/float").false_miss == 0);
     CHECK(by_key.at("watertight/double").false_miss == 0);
+    // Leaks that hit the far side of the mesh (t error about 1) are wrong answers, not agreement:
+    // Möller–Trumbore and Badouel in float have them (measured 301 and 369 of 100,000 rays,
+    // 58 and 80 of 20,000), watertight none; each such row's max error is the far side.
+    for (const char* key : {"moller_trumbore/float", "badouel/float"}) {
+        CAPTURE(key);
+        CHECK(by_key.at(key).wrong_t > 0);
+        CHECK(by_key.at(key).max_rel_t_err > 0.5);
+    }
+    CHECK(by_key.at("watertight/float").wrong_t == 0);
+    CHECK(by_key.at("watertight/double").wrong_t == 0);
 }
 
 TEST_CASE("triangle cross-check is reproducible", "[intersect][triangle][oracle]") {

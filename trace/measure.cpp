@@ -1,6 +1,9 @@
 // measure_trace: the timing loop shared by `rtlab trace` and `rtlab sweep`.
 #include "trace/measure.h"
 
+#include "accel/cost_model.h"
+#include "accel/spec.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -74,6 +77,12 @@ TraceMeasurement measure_trace(const SceneTracer& tracer,
         m.has_stats = true;
         m.nodes_per_ray = static_cast<double>(st.nodes) / n;
         m.prims_per_ray = static_cast<double>(st.prims) / n;
+        const CostParams p = cost_params(parse_accel_spec(tracer.accel_spec()));
+        m.measured_cost = measured_cost(p, m.nodes_per_ray, m.prims_per_ray);
+        for (const auto& [expected, epo] : tracer.cost_figures(p, opt.epo)) {
+            m.cost_model += expected.cost(p);
+            m.epo = std::max(m.epo, epo);
+        }
     }
     if (hits_out != nullptr) {
         *hits_out = std::move(hits);

@@ -20,6 +20,7 @@ struct MeasureOptions {
     int repeat = 1;        ///< timed runs; the median is reported
     int warmup = 0;        ///< untimed runs first (thread pool start-up, caches, page faults)
     bool stats = false;    ///< add a counting pass (nodes and primitive tests per ray)
+    bool epo = false;      ///< with stats: also the end-point overlap of BVHs over triangles
 };
 
 /// The figures of one measured batch.
@@ -39,6 +40,11 @@ struct TraceMeasurement {
     bool has_stats = false;             ///< nodes_per_ray and prims_per_ray are set
     double nodes_per_ray = 0;
     double prims_per_ray = 0;
+    /// With stats: the one cost model (accel/cost_model.h) with the spec's ct and ci, summed over
+    /// sets: predicted ct * nodes + ci * prims per ray, and the same over the counted figures.
+    double cost_model = 0;
+    double measured_cost = 0;
+    double epo = -1;  ///< with epo: end-point overlap of the triangle set's BVH (-1: none)
 };
 
 /// Median of v (the mean of the middle two for an even count); 0 for an empty v.

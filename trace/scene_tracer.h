@@ -4,6 +4,7 @@
 // TBB. Each ray is independent, so results do not depend on the thread count.
 
 #include "accel/accel.h"
+#include "accel/cost_model.h"
 #include "intersect/hit.h"
 #include "scene/scene.h"
 #include "trace/prim_sets.h"
@@ -59,6 +60,11 @@ public:
     const std::vector<std::string>& set_methods() const { return set_methods_; }
     /// Info of every set's structure (set order as set_methods()).
     std::vector<AccelInfo> infos() const;
+    /// The one cost model's expected counts (accel/cost_model.h) of every set's structure, and
+    /// with_epo the end-point overlap of a BVH over the triangle set (-1 for other sets and
+    /// structures; slow: clips triangles against every node), set order as set_methods().
+    std::vector<std::pair<CostEstimate, double>> cost_figures(const CostParams& p,
+                                                              bool with_epo) const;
     /// Number of global primitives.
     std::uint32_t primitive_count() const { return prim_count_; }
 
@@ -69,6 +75,7 @@ private:
     double build_ms_ = 0;
     bool robust_ = false;
     std::uint32_t prim_count_ = 0;
+    std::vector<Trianglef> triangles_;  ///< the triangle set's shapes, local order (for EPO)
 };
 
 }  // namespace rtlab

@@ -4,8 +4,10 @@
 // (count, then fill) give the CSR arrays. Epsilon policy: each primitive box is widened by
 // 1e-4 cell + 4 ulp of the grid's coordinates before it is mapped to cells, so a primitive
 // touching a cell face is also listed in the neighbour that the DDA's rounded entry point or
-// crossing times may select. Cost: O(N + references + cells).
+// crossing times may select. Cost: O(N + references + cells); the references (and their clipping,
+// the expensive part) are gathered in parallel with TBB, deterministically.
 
+#include "accel/grid/cell_refs.h"
 #include "accel/grid/grid.h"
 
 #include <algorithm>
@@ -16,39 +18,6 @@
 #include <vector>
 
 namespace rtlab {
-
-namespace {
-
-/// Cells per axis by Woo's formula over the axes of non-zero extent.
-std::array<std::uint32_t, 3> woo_resolution(const Bounds3f& box,
-                                            std::size_t n,
-                                            const GridConfig& cfg) {
-    const Vec3f d = box.diagonal();
-    double volume = 1.0;
-    int dims = 0;
-    for (std::size_t a = 0; a < 3; ++a) {
-        if (d[a] > 0.0f) {
-            volume *= static_cast<double>(d[a]);
-            ++dims;
-        }
-    }
-    std::array<std::uint32_t, 3> res{1, 1, 1};
-    if (dims == 0) {
-        return res;
-    }
-    const double cells = std::max(1.0, static_cast<double>(cfg.density) * static_cast<double>(n));
-    const double scale = std::pow(cells / volume, 1.0 / dims);
-    const double max_res = static_cast<double>(std::max<std::uint32_t>(cfg.max_res, 1));
-    for (std::size_t a = 0; a < 3; ++a) {
-        if (d[a] > 0.0f) {
-            const double r = std::floor(static_cast<double>(d[a]) * scale + 0.5);
-            res[a] = static_cast<std::uint32_t>(std::clamp(r, 1.0, max_res));
-        }
-    }
-    return res;
-}
-
-}  // namespace
 
 Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
     Grid g;
@@ -64,12 +33,10 @@ Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
     if (present == 0) {
         return g;
     }
-    g.res = woo_resolution(g.box, present, cfg);
-    const Vec3f d = g.box.diagonal();
+    static_cast<GridFrame&>(g) =
+        GridFrame::over(g.box, woo_resolution(g.box, present, cfg.density, cfg.max_res));
     Vec3f pad;
     for (std::size_t a = 0; a < 3; ++a) {
-        g.cell_size[a] = d[a] / static_cast<float>(g.res[a]);
-        g.inv_cell_size[a] = d[a] > 0.0f ? 1.0f / g.cell_size[a] : 0.0f;
         const float mag = std::max(std::abs(g.box.lo[a]), std::abs(g.box.hi[a]));
         pad[a] = 1e-4f * g.cell_size[a] + 4.0f * std::numeric_limits<float>::epsilon() * mag;
     }
@@ -114,30 +81,31 @@ Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg) {
         return count;
     };
     // The clipped overlap, or the box overlap when there is no clip or it lost the primitive.
+    // A box within one cell skips the clip: it could only confirm that cell or lose it to
+    // rounding and fall back to it.
+    const auto one_cell = [&](std::uint32_t id) {
+        const Bounds3f& b = in.bounds[id];
+        for (std::size_t a = 0; a < 3; ++a) {
+            if (cell_of(b.lo[a] - pad[a], a) != cell_of(b.hi[a] + pad[a], a)) {
+                return false;
+            }
+        }
+        return true;
+    };
     const auto for_cells = [&](std::uint32_t id, auto&& fn) {
-        if (!in.clip || overlap(id, true, fn) == 0) {
+        if (!in.clip || one_cell(id) || overlap(id, true, fn) == 0) {
             overlap(id, false, fn);
         }
     };
 
-    // Pass 1: count references per cell; prefix sums give the CSR offsets.
-    g.cell_start.assign(g.cell_count() + 1, 0);
-    for (std::uint32_t id = 0; id < in.bounds.size(); ++id) {
-        if (g.prim_present[id]) {
-            for_cells(id, [&](std::size_t c) { ++g.cell_start[c + 1]; });
-        }
-    }
-    for (std::size_t c = 0; c < g.cell_count(); ++c) {
-        g.cell_start[c + 1] += g.cell_start[c];
-    }
-    // Pass 2: fill; ids arrive in ascending order, so each cell's list is sorted.
-    g.cell_prims.resize(g.cell_start.back());
-    std::vector<std::uint32_t> cursor(g.cell_start.begin(), g.cell_start.end() - 1);
-    for (std::uint32_t id = 0; id < in.bounds.size(); ++id) {
-        if (g.prim_present[id]) {
-            for_cells(id, [&](std::size_t c) { g.cell_prims[cursor[c]++] = id; });
-        }
-    }
+    // References gathered in parallel (in id order), then sorted by cell: ids stay ascending.
+    const auto refs = gather_cell_refs<std::uint32_t>(
+        static_cast<std::uint32_t>(in.bounds.size()), [&](std::uint32_t id, auto&& emit) {
+            if (g.prim_present[id]) {
+                for_cells(id, [&](std::size_t c) { emit(c, id); });
+            }
+        });
+    refs_to_csr(refs, g.cell_count(), g.cell_start, g.cell_prims);
     return g;
 }
 

@@ -1,7 +1,8 @@
 // Spatial-median kd-tree: every node is split at the middle of its longest axis (the classic
 // baseline; Kaplan 1985, cited by Havran 2000). It stops where the SAH builder would: at
 // min_leaf_size, at max_depth, or when the split's SAH cost is not below the leaf's.
-// Straddling primitives go to both sides with clipped boxes (BuildInput::clip when given).
+// Straddling primitives go to both sides with clipped boxes (BuildInput::clip when given and
+// Config::perfect_splits is on).
 // Cost: O(N log N) for balanced scenes (each level touches each reference once).
 
 #include "accel/kdtree/build_common.h"
@@ -27,6 +28,7 @@ public:
         : in_(in)
         , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
         , min_leaf_(cfg.min_leaf_size)
+        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
         , tree_(tree) {}
 
     /// Builds the subtree of the node `box` holding `refs`.
@@ -84,7 +86,7 @@ public:
 private:
     /// The part of primitive id inside box (empty when none).
     Bounds3f clip(std::uint32_t id, const Bounds3f& box) const {
-        if (in_.clip) {
+        if (perfect_) {
             return intersection(in_.clip(id, box), box);
         }
         return intersection(in_.bounds[id], box);
@@ -93,6 +95,7 @@ private:
     const BuildInput& in_;
     kd_detail::CostModel cost_;
     std::size_t min_leaf_;
+    bool perfect_;
     KdTree& tree_;
 };
 

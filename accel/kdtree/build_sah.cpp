@@ -1,55 +1,64 @@
 // SAH kd-tree in O(N log N): Wald & Havran 2006, "On building fast kd-trees for ray tracing, and
-// on doing that in O(N log N)". Per-axis event lists (end < planar < start at equal positions) are
-// sorted once; each node sweeps them to find the cheapest plane (planar primitives go to the
-// cheaper side), classifies primitives left / right / both, and splits the lists in linear time;
-// only the clipped events of straddling primitives are sorted and merged back in. Planes on the
-// node's boundary are not candidates (they would repeat the node). Perfect splits: a straddling
-// primitive's part on each side is BuildInput::clip(id, side box) when given, else box ∩ side.
+// on doing that in O(N log N)". Per-axis event lists (end < planar < start at equal positions,
+// packed 64-bit events, accel/kdtree/events.h) are radix-sorted once; each node sweeps them to
+// find the cheapest plane (planar primitives go to the cheaper side), classifies primitives left
+// / right / both, and splits the lists in linear time. Straddling primitives: without perfect
+// splits their box is cut at the plane, which moves one event on the split axis only (no sort);
+// with perfect splits (Config::perfect_splits and a BuildInput::clip) each part is the clipped
+// triangle's box on the side, whose events are sorted and merged back in. Planes on the node's
+// boundary are not candidates (they would repeat the node).
+// Parallel: subtrees of large nodes are TBB tasks, each writing its own chunk of nodes; the chunks
+// are stitched in pre-order, so the tree is the same for any thread count.
 
 #include "accel/kdtree/build_common.h"
+#include "accel/kdtree/events.h"
 #include "accel/kdtree/kdtree.h"
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 #include <vector>
 
 namespace rtlab {
 
 namespace {
 
-/// Event kinds, in the order they sort at equal positions.
-enum EventType : std::uint8_t { event_end = 0, event_planar = 1, event_start = 2 };
-
-/// One boundary of a primitive's clipped box along one axis.
-struct Event {
-    float pos;
-    std::uint32_t prim;
-    std::uint8_t type;
-
-    friend bool operator<(const Event& a, const Event& b) {
-        if (a.pos != b.pos) {
-            return a.pos < b.pos;
-        }
-        if (a.type != b.type) {
-            return a.type < b.type;
-        }
-        return a.prim < b.prim;
-    }
-};
-
-using EventLists = std::array<std::vector<Event>, 3>;
+using kd_detail::Event;
+using kd_detail::event_end;
+using kd_detail::event_planar;
+using kd_detail::event_pos;
+using kd_detail::event_pos_bits;
+using kd_detail::event_prim;
+using kd_detail::event_start;
+using kd_detail::event_type;
+using kd_detail::EventLists;
+using kd_detail::make_event;
 
 /// Appends the events of `box` (non-empty) for primitive `id` on every axis.
 void add_events(EventLists& ev, std::uint32_t id, const Bounds3f& box) {
     for (std::size_t k = 0; k < 3; ++k) {
         if (box.lo[k] == box.hi[k]) {
-            ev[k].push_back({box.lo[k], id, event_planar});
+            ev[k].push_back(make_event(box.lo[k], event_planar, id));
         } else {
-            ev[k].push_back({box.lo[k], id, event_start});
-            ev[k].push_back({box.hi[k], id, event_end});
+            ev[k].push_back(make_event(box.lo[k], event_start, id));
+            ev[k].push_back(make_event(box.hi[k], event_end, id));
         }
     }
+}
+
+/// Merges the sorted `extra` into the sorted `list`.
+void merge_sorted(std::vector<Event>& list, const std::vector<Event>& extra) {
+    if (extra.empty()) {
+        return;
+    }
+    std::vector<Event> merged(list.size() + extra.size());
+    std::merge(list.begin(), list.end(), extra.begin(), extra.end(), merged.begin());
+    list = std::move(merged);
 }
 
 /// Where a primitive goes at the current split.
@@ -63,105 +72,110 @@ struct Plane {
     bool planar_left = true;  ///< primitives lying in the plane go to the left (below) child
 };
 
+/// Nodes and leaf lists of one subtree in pre-order, indices relative to the chunk; a leaf with
+/// count KdNode::max_index stands for the chunk subs[payload] (built by another task).
+struct Chunk {
+    std::vector<KdNode> nodes;
+    std::vector<std::uint32_t> prim_ids;
+    std::vector<std::unique_ptr<Chunk>> subs;
+};
+
+/// Nodes at least this large build their children as parallel tasks.
+constexpr std::size_t parallel_min = 4096;
+
 class SahBuilder {
 public:
-    SahBuilder(const BuildInput& in, const KdTree::Config& cfg, KdTree& tree)
+    SahBuilder(const BuildInput& in, const KdTree::Config& cfg, std::uint32_t max_depth)
         : in_(in)
         , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
         , min_leaf_(cfg.min_leaf_size)
-        , tree_(tree)
-        , side_(in.bounds.size(), side_both) {}
+        , max_depth_(max_depth)
+        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
+        , parallel_(
+              tbb::this_task_arena::max_concurrency() > 1 &&
+              tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1) {
+    }
 
-    /// Builds the subtree of the node `box` whose primitives' events are `ev`.
-    void recurse(EventLists ev, const Bounds3f& box, std::uint32_t depth) {
+    /// Builds the subtree of the node `box` whose primitives' events are `ev` into `out`;
+    /// `side` has one scratch byte per primitive id, owned by the calling task.
+    void build(EventLists ev, const Bounds3f& box, std::uint32_t depth, Chunk& out, Side* side) {
         std::vector<std::uint32_t> ids;
-        for (const Event& e : ev[0]) {
-            if (e.type != event_end) {
-                ids.push_back(e.prim);
+        for (const Event e : ev[0]) {
+            if (event_type(e) != event_end) {
+                ids.push_back(event_prim(e));
             }
         }
         const std::size_t n = ids.size();
-        if (n <= min_leaf_ || depth >= tree_.max_depth) {
-            kd_detail::emit_leaf(tree_, ids);
-            return;
-        }
-        const Plane best = find_plane(ev, box, n);
+        const Plane best = n <= min_leaf_ || depth >= max_depth_ ? Plane{} : find_plane(ev, box, n);
         if (!(best.cost < cost_.leaf_cost(n))) {
-            kd_detail::emit_leaf(tree_, ids);
+            emit_leaf(out, ids);
             return;
         }
+        classify(ev[best.axis], ids, best, side);
+        EventLists left, right;
+        split_lists(ev, best, ids, box, side, left, right);
+
+        const auto index = static_cast<std::uint32_t>(out.nodes.size());
+        out.nodes.push_back(KdNode::inner(best.axis, best.pos, 0));
         const Bounds3f left_box = kd_detail::half_box(box, best.axis, best.pos, 0);
         const Bounds3f right_box = kd_detail::half_box(box, best.axis, best.pos, 1);
-        classify(ev[best.axis], ids, best);
-
-        // Split the sorted lists: one-sided primitives keep their events (order is preserved).
-        EventLists left, right;
-        for (std::size_t k = 0; k < 3; ++k) {
-            for (const Event& e : ev[k]) {
-                if (side_[e.prim] == side_left) {
-                    left[k].push_back(e);
-                } else if (side_[e.prim] == side_right) {
-                    right[k].push_back(e);
-                }
-            }
-            ev[k].clear();
-            ev[k].shrink_to_fit();
+        if (parallel_ && n >= parallel_min) {
+            auto lc = std::make_unique<Chunk>(), rc = std::make_unique<Chunk>();
+            auto right_side = std::make_unique_for_overwrite<Side[]>(in_.bounds.size());
+            tbb::parallel_invoke(
+                [&] { build(std::move(left), left_box, depth + 1, *lc, side); },
+                [&] { build(std::move(right), right_box, depth + 1, *rc, right_side.get()); });
+            add_sub(out, std::move(lc));
+            out.nodes[index] = KdNode::inner(best.axis, best.pos, link(out));
+            add_sub(out, std::move(rc));
+            return;
         }
-        // Straddling primitives get new events from their clipped parts, sorted and merged.
-        EventLists both_left, both_right;
-        for (const std::uint32_t id : ids) {
-            if (side_[id] != side_both) {
-                continue;
-            }
-            Bounds3f lb = clip(id, left_box), rb = clip(id, right_box);
-            if (!is_usable_box(lb) && !is_usable_box(rb)) {
-                // An inexact clip lost the primitive on both sides: keep its boxes instead.
-                lb = intersection(in_.bounds[id], left_box);
-                rb = intersection(in_.bounds[id], right_box);
-            }
-            if (is_usable_box(lb)) {
-                add_events(both_left, id, lb);
-            }
-            if (is_usable_box(rb)) {
-                add_events(both_right, id, rb);
-            }
-        }
-        merge_into(left, both_left);
-        merge_into(right, both_right);
-
-        const std::uint32_t index = kd_detail::emit_inner(tree_, best.axis, best.pos);
-        recurse(std::move(left), left_box, depth + 1);
-        kd_detail::link_above(tree_, index);
-        recurse(std::move(right), right_box, depth + 1);
+        build(std::move(left), left_box, depth + 1, out, side);
+        out.nodes[index] = KdNode::inner(best.axis, best.pos, link(out));
+        build(std::move(right), right_box, depth + 1, out, side);
     }
 
 private:
-    /// The sweep over the three sorted event lists (Wald & Havran, algorithm 4).
+    /// The sweep over the three sorted event lists (Wald & Havran, algorithm 4). Surface areas
+    /// of the two sides are linear in the plane position, so each candidate costs a few flops.
     Plane find_plane(const EventLists& ev, const Bounds3f& box, std::size_t n) const {
         Plane best;
+        const Vec3f df = box.hi - box.lo;
+        const double d[3] = {df.x, df.y, df.z};
+        const double sa = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+        if (!(sa > 0.0)) {
+            return best;
+        }
+        const double kt = cost_.kt, ki = cost_.ki;
+        const double bonus = 1.0 - static_cast<double>(cost_.bonus);
         for (std::uint32_t k = 0; k < 3; ++k) {
+            const double d1 = d[(k + 1) % 3], d2 = d[(k + 2) % 3];
+            const double cap = 2.0 * d1 * d2 / sa, side = 2.0 * (d1 + d2) / sa;
+            const double lo = box.lo[k], hi = box.hi[k];
             const std::vector<Event>& list = ev[k];
             std::size_t nl = 0, nr = n;
             std::size_t i = 0;
+            const auto cost = [&](double pl, double pr, std::size_t l, std::size_t r) {
+                const double c =
+                    kt + ki * (pl * static_cast<double>(l) + pr * static_cast<double>(r));
+                return l == 0 || r == 0 ? bonus * c : c;
+            };
             while (i < list.size()) {
-                const float p = list[i].pos;
+                const std::uint32_t pb = event_pos_bits(list[i]);
                 std::size_t n_end = 0, n_planar = 0, n_start = 0;
-                while (i < list.size() && list[i].pos == p && list[i].type == event_end) {
-                    ++n_end;
-                    ++i;
-                }
-                while (i < list.size() && list[i].pos == p && list[i].type == event_planar) {
-                    ++n_planar;
-                    ++i;
-                }
-                while (i < list.size() && list[i].pos == p && list[i].type == event_start) {
-                    ++n_start;
-                    ++i;
+                for (; i < list.size() && event_pos_bits(list[i]) == pb; ++i) {
+                    const auto t = event_type(list[i]);
+                    n_end += t == event_end ? 1 : 0;
+                    n_planar += t == event_planar ? 1 : 0;
+                    n_start += t == event_start ? 1 : 0;
                 }
                 nr -= n_planar + n_end;
+                const float p = kd_detail::from_order_bits(pb);
                 if (p > box.lo[k] && p < box.hi[k]) {
-                    const double cl = cost_.split_cost(box, k, p, nl + n_planar, nr);
-                    const double cr = cost_.split_cost(box, k, p, nl, nr + n_planar);
+                    const double pl = cap + side * (static_cast<double>(p) - lo);
+                    const double pr = cap + side * (hi - static_cast<double>(p));
+                    const double cl = cost(pl, pr, nl + n_planar, nr);
+                    const double cr = cost(pl, pr, nl, nr + n_planar);
                     if (cl < best.cost) {
                         best = {cl, k, p, true};
                     }
@@ -175,58 +189,157 @@ private:
         return best;
     }
 
-    /// Sets side_[id] for the node's primitives from the events on the split axis.
-    void classify(const std::vector<Event>& list,
-                  const std::vector<std::uint32_t>& ids,
-                  const Plane& plane) {
+    /// Sets side[id] for the node's primitives from the events on the split axis.
+    static void classify(const std::vector<Event>& list,
+                         const std::vector<std::uint32_t>& ids,
+                         const Plane& plane,
+                         Side* side) {
         for (const std::uint32_t id : ids) {
-            side_[id] = side_both;
+            side[id] = side_both;
         }
         const float p = plane.pos;
-        for (const Event& e : list) {
-            if (e.type == event_end && e.pos <= p) {
-                side_[e.prim] = side_left;
-            } else if (e.type == event_start && e.pos >= p) {
-                side_[e.prim] = side_right;
-            } else if (e.type == event_planar) {
-                const bool left = e.pos < p || (e.pos == p && plane.planar_left);
-                side_[e.prim] = left ? side_left : side_right;
+        for (const Event e : list) {
+            const float pos = event_pos(e);
+            switch (event_type(e)) {
+            case event_end:
+                if (pos <= p) {
+                    side[event_prim(e)] = side_left;
+                }
+                break;
+            case event_start:
+                if (pos >= p) {
+                    side[event_prim(e)] = side_right;
+                }
+                break;
+            default: {
+                const bool left = pos < p || (pos == p && plane.planar_left);
+                side[event_prim(e)] = left ? side_left : side_right;
+            }
             }
         }
     }
 
-    /// The part of primitive id inside box (empty when none).
-    Bounds3f clip(std::uint32_t id, const Bounds3f& box) const {
-        if (in_.clip) {
-            return intersection(in_.clip(id, box), box);
-        }
-        return intersection(in_.bounds[id], box);
-    }
-
-    /// Sorts `extra` and merges it into the already sorted `lists`, axis by axis.
-    static void merge_into(EventLists& lists, EventLists& extra) {
+    /// Splits the node's sorted lists into the children's, keeping them sorted.
+    void split_lists(EventLists& ev,
+                     const Plane& best,
+                     const std::vector<std::uint32_t>& ids,
+                     const Bounds3f& box,
+                     const Side* side,
+                     EventLists& left,
+                     EventLists& right) const {
+        const std::uint32_t a = best.axis;
         for (std::size_t k = 0; k < 3; ++k) {
-            if (extra[k].empty()) {
+            left[k].reserve(ev[k].size());
+            right[k].reserve(ev[k].size());
+            for (const Event e : ev[k]) {
+                const Side s = side[event_prim(e)];
+                if (s == side_left) {
+                    left[k].push_back(e);
+                } else if (s == side_right) {
+                    right[k].push_back(e);
+                } else if (!perfect_) {
+                    // Cut at the plane: events off the split axis are kept on both sides; on
+                    // it, the start stays left and the end right (new ones are added below).
+                    if (k != a || event_type(e) == event_start) {
+                        left[k].push_back(e);
+                    }
+                    if (k != a || event_type(e) == event_end) {
+                        right[k].push_back(e);
+                    }
+                }
+            }
+            std::vector<Event>().swap(ev[k]);
+        }
+        EventLists both_left, both_right;
+        for (const std::uint32_t id : ids) {
+            if (side[id] != side_both) {
                 continue;
             }
-            std::sort(extra[k].begin(), extra[k].end());
-            std::vector<Event> merged(lists[k].size() + extra[k].size());
-            std::merge(lists[k].begin(), lists[k].end(), extra[k].begin(), extra[k].end(),
-                       merged.begin());
-            lists[k] = std::move(merged);
+            if (!perfect_) {
+                both_left[a].push_back(make_event(best.pos, event_end, id));
+                both_right[a].push_back(make_event(best.pos, event_start, id));
+                continue;
+            }
+            const Bounds3f left_box = kd_detail::half_box(box, a, best.pos, 0);
+            const Bounds3f right_box = kd_detail::half_box(box, a, best.pos, 1);
+            Bounds3f lb = intersection(in_.clip(id, left_box), left_box);
+            Bounds3f rb = intersection(in_.clip(id, right_box), right_box);
+            if (!is_usable_box(lb) && !is_usable_box(rb)) {
+                // An inexact clip lost the primitive on both sides: keep its boxes instead.
+                lb = intersection(in_.bounds[id], left_box);
+                rb = intersection(in_.bounds[id], right_box);
+            }
+            if (is_usable_box(lb)) {
+                add_events(both_left, id, lb);
+            }
+            if (is_usable_box(rb)) {
+                add_events(both_right, id, rb);
+            }
         }
+        for (std::size_t k = 0; k < 3; ++k) {
+            std::sort(both_left[k].begin(), both_left[k].end());
+            std::sort(both_right[k].begin(), both_right[k].end());
+            merge_sorted(left[k], both_left[k]);
+            merge_sorted(right[k], both_right[k]);
+        }
+    }
+
+    static void emit_leaf(Chunk& out, std::vector<std::uint32_t>& ids) {
+        if (ids.size() >= KdNode::max_index) {
+            throw std::length_error("kd-tree: too many primitives in one leaf");
+        }
+        std::sort(ids.begin(), ids.end());
+        out.nodes.push_back(KdNode::leaf(static_cast<std::uint32_t>(out.prim_ids.size()),
+                                         static_cast<std::uint32_t>(ids.size())));
+        out.prim_ids.insert(out.prim_ids.end(), ids.begin(), ids.end());
+    }
+
+    static void add_sub(Chunk& out, std::unique_ptr<Chunk> sub) {
+        out.nodes.push_back(
+            KdNode::leaf(static_cast<std::uint32_t>(out.subs.size()), KdNode::max_index));
+        out.subs.push_back(std::move(sub));
+    }
+
+    /// The index the next node of `out` will get, as an above-child link.
+    static std::uint32_t link(const Chunk& out) {
+        if (out.nodes.size() > KdNode::max_index) {
+            throw std::length_error("kd-tree: too many nodes for 30-bit indices");
+        }
+        return static_cast<std::uint32_t>(out.nodes.size());
     }
 
     const BuildInput& in_;
     kd_detail::CostModel cost_;
     std::size_t min_leaf_;
-    KdTree& tree_;
-    std::vector<std::uint8_t> side_;  ///< per primitive id, valid for the node being split
+    std::uint32_t max_depth_;
+    bool perfect_;
+    bool parallel_;
 };
 
-}  // namespace
+/// Appends the subtree rooted at c.nodes[local] to the tree in pre-order.
+void stitch(const Chunk& c, std::uint32_t local, KdTree& t) {
+    const KdNode n = c.nodes[local];
+    if (n.is_leaf() && n.prim_count() == KdNode::max_index) {
+        stitch(*c.subs[n.prim_offset()], 0, t);
+        return;
+    }
+    if (n.is_leaf()) {
+        if (t.prim_ids.size() + n.prim_count() > 0xFFFFFFFFu) {
+            throw std::length_error("kd-tree: too many primitive references");
+        }
+        t.nodes.push_back(
+            KdNode::leaf(static_cast<std::uint32_t>(t.prim_ids.size()), n.prim_count()));
+        const auto first = c.prim_ids.begin() + n.prim_offset();
+        t.prim_ids.insert(t.prim_ids.end(), first, first + n.prim_count());
+        return;
+    }
+    const std::uint32_t index = kd_detail::emit_inner(t, n.axis(), n.split());
+    stitch(c, local + 1, t);
+    kd_detail::link_above(t, index);
+    stitch(c, n.above_child(), t);
+}
 
-KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg) {
+KdTree build(const BuildInput& in, const KdTree::Config& cfg) {
     KdTree tree = kd_detail::start_tree(in, cfg);
     EventLists ev;
     for (std::size_t k = 0; k < 3; ++k) {
@@ -237,12 +350,32 @@ KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg) {
             add_events(ev, id, in.bounds[id]);
         }
     }
-    for (std::size_t k = 0; k < 3; ++k) {
-        std::sort(ev[k].begin(), ev[k].end());
+    tbb::parallel_invoke([&] { kd_detail::sort_events(ev[0]); },
+                         [&] { kd_detail::sort_events(ev[1]); },
+                         [&] { kd_detail::sort_events(ev[2]); });
+    SahBuilder builder(in, cfg, tree.max_depth);
+    Chunk root;
+    auto side = std::make_unique_for_overwrite<Side[]>(in.bounds.size());
+    builder.build(std::move(ev), tree.scene_bounds, 0, root, side.get());
+    if (root.subs.empty()) {
+        tree.nodes = std::move(root.nodes);
+        tree.prim_ids = std::move(root.prim_ids);
+    } else {
+        tree.nodes.reserve(root.nodes.size());
+        stitch(root, 0, tree);
     }
-    SahBuilder builder(in, cfg, tree);
-    builder.recurse(std::move(ev), tree.scene_bounds, 0);
     return tree;
+}
+
+}  // namespace
+
+/// The SAH kd-tree on cfg.threads TBB threads (0: all allowed); the tree does not depend on it.
+KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg) {
+    if (cfg.threads == 0) {
+        return build(in, cfg);
+    }
+    tbb::task_arena arena(static_cast<int>(cfg.threads));
+    return arena.execute([&] { return build(in, cfg); });
 }
 
 }  // namespace rtlab

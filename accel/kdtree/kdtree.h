@@ -26,6 +26,11 @@ struct KdTree {
         float empty_bonus = 0.8f;        ///< split cost is scaled by (1 - bonus) if a side is empty
         std::uint32_t max_depth = 0;     ///< deepest leaf; 0 = 8 + 1.3 log2 N (pbrt); capped at 64
         std::uint32_t min_leaf_size = 1;  ///< nodes with at most this many primitives are leaves
+        /// Perfect splits (Havran 2000; Wald & Havran 2006): a straddling primitive's part on
+        /// each side is BuildInput::clip of it (the clipped triangle's box) when a clip is given;
+        /// off, or without a clip, it is its box cut at the plane.
+        bool perfect_splits = true;
+        std::uint32_t threads = 0;  ///< TBB threads of the SAH build (0: all allowed); same tree
     };
 
     /// Deepest possible leaf whatever the configuration; sizes the traversal stack.

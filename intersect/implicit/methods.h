@@ -50,8 +50,9 @@ struct ImplicitMethodBase {
     }
 };
 
-/// Closed form: all real roots of the ray quartic, the first in the window. Exact double roots
-/// (tangency) are kept by the small discriminant slack of solve_quadratic/solve_cubic.
+/// Closed form: all real roots of the ray quartic on the unit window (solve_closed_form_unit:
+/// negligible leading terms dropped), the first in the window. Exact double roots (tangency) are
+/// kept by the small discriminant slack of solve_quadratic/solve_cubic.
 template <template <class> class Surface, class T>
 struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Surface, T>> {
     static constexpr std::string_view name = "closed_form";
@@ -67,7 +68,7 @@ struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Su
                                                const Ray<T>& ray,
                                                const ImplicitRay<T>& rd) {
         return implicit_intersect(p, ray, rd, [](const auto& poly) -> std::optional<T> {
-            const RealRoots<T, 4> r = solve_closed_form(poly);
+            const RealRoots<T, 4> r = solve_closed_form_unit(poly);
             T u;
             return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
         });

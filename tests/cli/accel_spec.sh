@@ -24,6 +24,17 @@ for key in nodes_per_ray bytes_per_prim; do
         echo "FAIL (spec): max_leaf=1 and max_leaf=8 report the same $key"; fail=1
     fi
 done
+# --stats adds the one cost model's prediction and the measured cost, and EPO for BVHs only.
+for key in cost_model measured_cost epo; do
+    grep -q "\"$key\":[0-9]" "$tmp/spec_8.json" ||
+        { echo "FAIL (stats): bvh:binned --stats lacks $key: $(cat "$tmp/spec_8.json")"; fail=1; }
+done
+expect_ok "stats grid:two_level" trace --repeat 1 --no-warmup --scene "$tmp/spec_soup.ply" \
+    --rays "$tmp/spec.rays" --accel grid:two_level --stats --hits "$tmp/spec_g2.hits"
+grep -q '"cost_model":[0-9]' "$tmp/out" && ! grep -q '"epo"' "$tmp/out" ||
+    { echo "FAIL (stats): grid:two_level --stats: $(cat "$tmp/out")"; fail=1; }
+"$RTLAB" compare "$tmp/spec_ref.hits" "$tmp/spec_g2.hits" >/dev/null ||
+    { echo "FAIL (spec): grid:two_level differs from brute force"; fail=1; }
 # Timing defaults: one untimed warm-up run, then the median of 5 timed runs.
 expect_ok "trace timing defaults" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
     --accel bvh:pair

@@ -48,6 +48,10 @@ grep -q "needs about" "$tmp/err" || { echo "FAIL (memory rays): $(cat "$tmp/err"
 expect_error "memory: render" render "$noop/sphere.json" -o "$noop/big.png" --width 16384 \
     --height 16384 --max-memory 1024
 grep -q "needs about" "$tmp/err" || { echo "FAIL (memory render): $(cat "$tmp/err")"; fail=1; }
+expect_error "memory: crosscheck" crosscheck --prim sphere --rays 100000000 --max-memory 64
+grep -q "needs about" "$tmp/err" || { echo "FAIL (memory crosscheck): $(cat "$tmp/err")"; fail=1; }
+expect_error "memory: stability" stability --rays 100000000 --max-memory 64
+grep -q "needs about" "$tmp/err" || { echo "FAIL (memory stability): $(cat "$tmp/err")"; fail=1; }
 
 # Values finite in the scene but not after float arithmetic: no NaN/Inf pixel is written.
 echo '{"lights": [{"type": "point", "position": [0, 0, 5], "color": [3e38, 3e38, 3e38]}],

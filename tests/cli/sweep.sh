@@ -5,7 +5,7 @@ expect_ok "sweep plan" sweep plan "$sweeps/small.json"
 cp "$tmp/out" "$tmp/plan1"
 expect_ok "sweep plan again" sweep plan "$sweeps/small.json"
 cmp -s "$tmp/plan1" "$tmp/out" || { echo "FAIL (sweep plan): two plans of one file differ"; fail=1; }
-grep -q "24 cases" "$tmp/plan1" || { echo "FAIL (sweep plan): not 24 cases"; fail=1; }
+grep -q "30 cases" "$tmp/plan1" || { echo "FAIL (sweep plan): not 30 cases"; fail=1; }
 expect_ok "sweep plan shards" sweep plan "$sweeps/small.json" --shards 5 --json
 # Validation errors name the file and the place, before anything runs or is written.
 bad() {  # bad NAME SED-EXPRESSION: a broken copy of small.json must fail plan, run and submit
@@ -23,11 +23,16 @@ bad unknown-method 's/"segura_feito"/"segura"/'
 bad unknown-kind 's/"shadow"/"umbra"/'
 bad unknown-field 's/"repeat"/"repeats"/'
 bad not-json 's/"name": "small",/"name": "small"/'
+bad render-scene 's/"scenes": \["flake2"\]/"scenes": ["flake9"]/'
+bad render-aov 's/"color", "depth"\]/"color", "albedo"]/'
+bad render-key 's/"width": 32/"widht": 32/'
+bad crosscheck-prim 's/"prim": "sphere"/"prim": "torus"/'
+bad crosscheck-method 's/"geometric", "stable"\]/"geometric", "stabel"]/'
 expect_error "sweep status of no sweep" sweep status "$tmp"
 expect_error "sweep merge of no sweep" sweep merge "$tmp"
 expect_error "sweep submit without --slurm" sweep submit "$sweeps/small.json" --dry-run
 expect_ok "sweep submit dry run" sweep submit "$sweeps/small.json" --slurm --dry-run \
     --max-parallel 2 -o "$tmp/dry"
-grep -q -- "--array=0-1%2" "$tmp/out" || { echo "FAIL (sweep submit dry run): no --array=0-1%2"; fail=1; }
+grep -q -- "--array=0-2%2" "$tmp/out" || { echo "FAIL (sweep submit dry run): no --array=0-2%2"; fail=1; }
 grep -q -- "afterany" "$tmp/out" || { echo "FAIL (sweep submit dry run): no afterany"; fail=1; }
 [[ -e $tmp/dry ]] && { echo "FAIL (sweep submit dry run): wrote $tmp/dry"; fail=1; }
