@@ -179,10 +179,6 @@ Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
     }
 }
 
-AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
-    return PairBvh::convert(source_bvh(in, s));
-}
-
 /// A row's build function: the builder B called with the Config the spec describes.
 template <auto B, auto ToConfig>
 AnyAccel row(const BuildInput& in, const AccelSpec& s) {
@@ -200,6 +196,13 @@ const ParamSpec leaves = choice_param("leaves",
                                       {"soa", "ids"},
                                       "soa: tracers test whole leaves with SIMD kernels on "
                                       "slot-ordered data; ids: one primitive id at a time");
+
+/// The pair layout's row: the `from` builder's tree (spec's Config) in pair nodes.
+AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
+    PairBvh p = PairBvh::convert(source_bvh(in, s));
+    p.soa_leaves = s.value("leaves") == 0;
+    return p;
+}
 
 /// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
@@ -229,7 +232,7 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",

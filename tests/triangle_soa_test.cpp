@@ -66,6 +66,20 @@ void check_kernel(const std::vector<Prepared>& prims, const std::vector<Rayf>& r
     const TriangleSoA soa =
         make_triangle_soa(prims, slots, is_wt ? SoaLayout::vertices : SoaLayout::edges);
     REQUIRE(soa.size() == prims.size());
+    // Each slot keeps its id: the slot's own primitive, or its entry in a caller's id map.
+    std::vector<std::uint32_t> global(prims.size());
+    for (std::size_t i = 0; i < global.size(); ++i) {
+        global[i] = static_cast<std::uint32_t>(1000 + 3 * i);
+    }
+    const TriangleSoA mapped =
+        make_triangle_soa(prims, slots, is_wt ? SoaLayout::vertices : SoaLayout::edges, global);
+    for (std::uint32_t s = 0; s < soa.size(); ++s) {
+        REQUIRE(soa.id(s) == slots[s]);
+        REQUIRE(mapped.id(s) == global[slots[s]]);
+        if constexpr (is_wt) {
+            REQUIRE(soa.vertices(s).p1.y == prims[slots[s]].p1.y);
+        }
+    }
     const auto n = static_cast<std::uint32_t>(prims.size());
     for (const Rayf& ray : rays) {
         const RayDataOf<M> rd = precompute_ray<M>(ray);

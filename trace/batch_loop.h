@@ -85,6 +85,16 @@ bool uses_leaf_kernel(const PrimSet<M>& s, const A&) {
     }
 }
 
+// True when set s is traced leaf by leaf over its slot-ordered primitives (slot_prims).
+template <class M, class A>
+bool uses_slot_prims(const PrimSet<M>& s, const A&) {
+    if constexpr (!soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+        return !s.slot_prims.empty();
+    } else {
+        return false;
+    }
+}
+
 // The leaf kernel of M (MollerTrumbore or Watertight) on slots [first, first + count).
 template <class M>
 std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
@@ -138,13 +148,33 @@ struct ClosestQuery {
                     return h.has_value();
                 };
                 if (acc.template intersect_leaves<IsRobust>(ray, leaf, stats)) {
-                    hits[i] = {best.hit.t, best.hit.u, best.hit.v, s.ids[acc.prim_ids[best.slot]]};
+                    hits[i] = {best.hit.t, best.hit.u, best.hit.v, s.soa.id(best.slot)};
                 }
                 return;
             }
         }
         std::uint32_t best = invalid_id;
         PrimHit<float> best_hit{};
+        if constexpr (LeafRangeAccel<A>) {
+            if (uses_slot_prims(s, acc)) {
+                const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
+                    bool found = false;
+                    for (std::uint32_t k = first; k < first + count; ++k) {
+                        if (const auto h = intersect_with<M>(s.slot_prims[k], rr, rd)) {
+                            rr.tmax = h->t;
+                            best = k;
+                            best_hit = *h;
+                            found = true;
+                        }
+                    }
+                    return found;
+                };
+                if (acc.template intersect_leaves<IsRobust>(ray, leaf, stats)) {
+                    hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.slot_ids[best]};
+                }
+                return;
+            }
+        }
         const auto leaf = [&, rd](std::uint32_t id, Rayf& rr) {
             const auto h = intersect_with<M>(s.prims[id], rr, rd);
             if (!h) {
@@ -184,12 +214,29 @@ struct AnyHitQuery {
                     return h.has_value();
                 };
                 if (acc.template occluded_leaves<IsRobust>(rays[i], leaf, stats)) {
-                    blocker[i] = s.ids[acc.prim_ids[slot]];
+                    blocker[i] = s.soa.id(slot);
                 }
                 return;
             }
         }
         std::uint32_t found = invalid_id;
+        if constexpr (LeafRangeAccel<A>) {
+            if (uses_slot_prims(s, acc)) {
+                const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
+                    for (std::uint32_t k = first; k < first + count; ++k) {
+                        if (occluded_with<M>(s.slot_prims[k], rr, rd)) {
+                            found = k;
+                            return true;
+                        }
+                    }
+                    return false;
+                };
+                if (acc.template occluded_leaves<IsRobust>(rays[i], leaf, stats)) {
+                    blocker[i] = s.slot_ids[found];
+                }
+                return;
+            }
+        }
         const auto leaf = [&, rd](std::uint32_t id, const Rayf& rr) {
             if (!occluded_with<M>(s.prims[id], rr, rd)) {
                 return false;

@@ -4,6 +4,7 @@
 // scene at run time; tracing visits both once per batch, so the per-ray loop is fully static.
 
 #include "accel/any_accel.h"
+#include "base/large_pages.h"
 #include "trace/method_families.h"
 #include "trace/triangle_soa.h"
 
@@ -19,12 +20,18 @@ namespace rtlab {
 template <class M>
 struct PrimSet {
     using Method = M;
-    std::vector<typename M::Prepared> prims;  ///< local index = structure's primitive id
+    LargeVector<typename M::Prepared> prims;  ///< local index = structure's primitive id
     std::vector<std::uint32_t> ids;           ///< global primitive id of each local one
     AnyAccel accel;                           ///< built over M::bounds of prims
     /// The triangles in the structure's leaf-slot order (empty unless M has a leaf kernel and the
     /// structure offers whole leaves with soa_leaves set; see trace/triangle_soa.h).
     TriangleSoA soa;
+    /// prims in the structure's leaf-slot order, slot_prims[s] = prims[prim_ids[s]] (empty unless
+    /// the structure offers whole leaves with soa_leaves set and M has no leaf kernel): leaves are
+    /// then tested without an id indirection, as madmann91/bvh's examples permute their triangles.
+    LargeVector<typename M::Prepared> slot_prims;
+    /// The global id of every slot of slot_prims (one read for a hit instead of two).
+    LargeVector<std::uint32_t> slot_ids;
 };
 
 /// The SoaLayout of M's leaf kernel, for the methods that have one.

@@ -33,15 +33,23 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
     set.accel = build_accel(accel, BuildInput{bounds, clip});
     build_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if constexpr (soa_layout_of<M>.has_value()) {
-        visit_accel(set.accel, [&](const auto& a) {
-            if constexpr (LeafRangeAccel<std::decay_t<decltype(a)>>) {
-                if (a.soa_leaves) {
-                    set.soa = make_triangle_soa(set.prims, a.prim_ids, *soa_layout_of<M>);
+    visit_accel(set.accel, [&](const auto& a) {
+        if constexpr (LeafRangeAccel<std::decay_t<decltype(a)>>) {
+            if (!a.soa_leaves) {
+                return;
+            }
+            if constexpr (soa_layout_of<M>.has_value()) {
+                set.soa = make_triangle_soa(set.prims, a.prim_ids, *soa_layout_of<M>, set.ids);
+            } else {
+                set.slot_prims.reserve(a.prim_ids.size());
+                set.slot_ids.reserve(a.prim_ids.size());
+                for (const std::uint32_t id : a.prim_ids) {
+                    set.slot_prims.push_back(set.prims[id]);
+                    set.slot_ids.push_back(set.ids[id]);
                 }
             }
-        });
-    }
+        }
+    });
     return set;
 }
 

@@ -54,33 +54,38 @@ unsigned first_lanes(std::uint32_t n) {
     return n >= 32 ? ~0u : (1u << n) - 1u;
 }
 
-void chunk_mt(SimdLevel l, const TriangleSoA& q, std::uint32_t s, const Rayf& ray, SoaChunk& c) {
+/// Bits of the lanes of a chunk starting at slot s0 whose slots lie in [first, end).
+unsigned lanes_in(std::uint32_t s0, std::uint32_t first, std::uint32_t end) {
+    return first_lanes(end - s0) & ~first_lanes(first > s0 ? first - s0 : 0);
+}
+
+void chunk_mt(SimdLevel l, const TriangleSoA& q, std::uint32_t g, const Rayf& ray, SoaChunk& c) {
     switch (l) {
     case SimdLevel::avx512:
-        return simd_avx512::soa_chunk_mt(q, s, ray, c);
+        return simd_avx512::soa_chunk_mt(q, g, ray, c);
     case SimdLevel::avx2:
-        return simd_avx2::soa_chunk_mt(q, s, ray, c);
+        return simd_avx2::soa_chunk_mt(q, g, ray, c);
     case SimdLevel::sse2:
         break;
     }
-    simd_sse2::soa_chunk_mt(q, s, ray, c);
+    simd_sse2::soa_chunk_mt(q, g, ray, c);
 }
 
 void chunk_watertight(SimdLevel l,
                       const TriangleSoA& q,
-                      std::uint32_t s,
+                      std::uint32_t g,
                       const Rayf& ray,
                       const WatertightRay<float>& wr,
                       SoaChunk& c) {
     switch (l) {
     case SimdLevel::avx512:
-        return simd_avx512::soa_chunk_watertight(q, s, ray, wr, c);
+        return simd_avx512::soa_chunk_watertight(q, g, ray, wr, c);
     case SimdLevel::avx2:
-        return simd_avx2::soa_chunk_watertight(q, s, ray, wr, c);
+        return simd_avx2::soa_chunk_watertight(q, g, ray, wr, c);
     case SimdLevel::sse2:
         break;
     }
-    simd_sse2::soa_chunk_watertight(q, s, ray, wr, c);
+    simd_sse2::soa_chunk_watertight(q, g, ray, wr, c);
 }
 
 /// The scalar method's verdict for candidate lane i of chunk c (slot s + i) with the current
@@ -115,15 +120,17 @@ std::optional<SlotHit> closest(const TriangleSoA& q,
                                const WatertightRay<float>* wr) {
     const SimdLevel l = simd_level();
     const unsigned w = lanes_of(l);
+    const std::uint32_t end = first + count;
     std::optional<SlotHit> best;
     SoaChunk c;
-    for (std::uint32_t s = first; s < first + count; s += w) {
+    // Chunks of w lanes from the group holding `first`; lanes outside the range are ignored.
+    for (std::uint32_t s = first / TriangleSoA::group * TriangleSoA::group; s < end; s += w) {
         if constexpr (IsWatertight) {
-            chunk_watertight(l, q, s, ray, *wr, c);
+            chunk_watertight(l, q, s / TriangleSoA::group, ray, *wr, c);
         } else {
-            chunk_mt(l, q, s, ray, c);
+            chunk_mt(l, q, s / TriangleSoA::group, ray, c);
         }
-        for (unsigned m = c.cand & first_lanes(first + count - s); m != 0; m &= m - 1) {
+        for (unsigned m = c.cand & lanes_in(s, first, end); m != 0; m &= m - 1) {
             const auto i = static_cast<unsigned>(__builtin_ctz(m));
             if (const auto h = accept<IsWatertight>(q, c, i, s + i, ray, wr)) {
                 ray.tmax = h->t;
@@ -142,14 +149,15 @@ std::optional<std::uint32_t> any(const TriangleSoA& q,
                                  const WatertightRay<float>* wr) {
     const SimdLevel l = simd_level();
     const unsigned w = lanes_of(l);
+    const std::uint32_t end = first + count;
     SoaChunk c;
-    for (std::uint32_t s = first; s < first + count; s += w) {
+    for (std::uint32_t s = first / TriangleSoA::group * TriangleSoA::group; s < end; s += w) {
         if constexpr (IsWatertight) {
-            chunk_watertight(l, q, s, ray, *wr, c);
+            chunk_watertight(l, q, s / TriangleSoA::group, ray, *wr, c);
         } else {
-            chunk_mt(l, q, s, ray, c);
+            chunk_mt(l, q, s / TriangleSoA::group, ray, c);
         }
-        for (unsigned m = c.cand & first_lanes(first + count - s); m != 0; m &= m - 1) {
+        for (unsigned m = c.cand & lanes_in(s, first, end); m != 0; m &= m - 1) {
             const auto i = static_cast<unsigned>(__builtin_ctz(m));
             if (accept<IsWatertight>(q, c, i, s + i, ray, wr)) {
                 return s + i;
@@ -163,29 +171,34 @@ std::optional<std::uint32_t> any(const TriangleSoA& q,
 
 VertexTriangleMethod<float>::Prepared TriangleSoA::vertices(std::uint32_t s) const {
     assert(layout == SoaLayout::vertices);
-    return {{a[0][s], a[1][s], a[2][s]}, {b[0][s], b[1][s], b[2][s]}, {c[0][s], c[1][s], c[2][s]}};
+    return {{at(s, 0), at(s, 1), at(s, 2)},
+            {at(s, 3), at(s, 4), at(s, 5)},
+            {at(s, 6), at(s, 7), at(s, 8)}};
 }
 
 TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepared> prims,
                               std::span<const std::uint32_t> slot_ids,
-                              SoaLayout layout) {
+                              SoaLayout layout,
+                              std::span<const std::uint32_t> ids) {
     TriangleSoA q;
     q.layout = layout;
-    for (int k = 0; k < 3; ++k) {
-        q.a[k].assign(slot_ids.size() + TriangleSoA::pad, 0.0f);
-        q.b[k].assign(slot_ids.size() + TriangleSoA::pad, 0.0f);
-        q.c[k].assign(slot_ids.size() + TriangleSoA::pad, 0.0f);
-    }
+    q.slots = static_cast<std::uint32_t>(slot_ids.size());
+    const std::size_t groups = (slot_ids.size() + TriangleSoA::group - 1) / TriangleSoA::group;
+    q.data.assign((groups + 1) * TriangleSoA::group_floats, 0.0f);  // + the zero padding group
     for (std::size_t s = 0; s < slot_ids.size(); ++s) {
         const auto& p = prims[slot_ids[s]];
         // The edges exactly as MollerTrumbore computes them.
         const Vec3f b = layout == SoaLayout::edges ? p.p1 - p.p0 : p.p1;
         const Vec3f c = layout == SoaLayout::edges ? p.p2 - p.p0 : p.p2;
+        float* const g = q.data.data() + s / TriangleSoA::group * TriangleSoA::group_floats;
+        const std::size_t lane = s % TriangleSoA::group;
         for (std::size_t k = 0; k < 3; ++k) {
-            q.a[k][s] = p.p0[k];
-            q.b[k][s] = b[k];
-            q.c[k][s] = c[k];
+            g[k * TriangleSoA::group + lane] = p.p0[k];
+            g[(3 + k) * TriangleSoA::group + lane] = b[k];
+            g[(6 + k) * TriangleSoA::group + lane] = c[k];
         }
+        const std::uint32_t id = ids.empty() ? slot_ids[s] : ids[slot_ids[s]];
+        g[9 * TriangleSoA::group + lane] = std::bit_cast<float>(id);
     }
     return q;
 }

@@ -7,11 +7,13 @@
 // comparisons, and watertight lanes with an exact zero edge function take the scalar method's
 // double fallback.
 
+#include "base/large_pages.h"
 #include "intersect/hit.h"
 #include "intersect/ray.h"
 #include "intersect/triangle/moller_trumbore.h"
 #include "intersect/triangle/watertight.h"
 
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -19,31 +21,50 @@
 
 namespace rtlab {
 
-/// What the nine arrays of a TriangleSoA hold.
+/// What the nine coordinate rows of a TriangleSoA group hold.
 enum class SoaLayout : std::uint8_t {
     edges,     ///< p0, e1 = p1 - p0, e2 = p2 - p0 (Möller–Trumbore)
     vertices,  ///< p0, p1, p2 (watertight)
 };
 
-/// Triangles by slot: a[axis][slot], b[axis][slot], c[axis][slot] (see SoaLayout), padded with
-/// zero triangles so that 8-lane loads from any slot stay inside the arrays.
+/// Triangles by slot in groups of four: group g holds slots 4g .. 4g + 3 as nine rows of four
+/// floats (a.x a.y a.z b.x b.y b.z c.x c.y c.z, see SoaLayout; lane s % 4 of a row is slot s) and
+/// a row of their four ids (the caller's, e.g. global primitive ids), so a leaf's triangles and
+/// the id of its hit lie in one or two adjacent 160-byte groups instead of in nine arrays and two
+/// id maps (a dozen cache lines and pages per leaf; blocks of four triangles with their ids as
+/// Embree's Triangle4 leaves).
+/// One zero group of padding follows the last, so two-group (8-lane) loads from any slot's group
+/// stay inside the data.
 struct TriangleSoA {
-    static constexpr std::uint32_t pad = 8;
+    static constexpr std::uint32_t group = 4;                    ///< slots per group
+    static constexpr std::uint32_t rows = 10;                    ///< rows per group (9 + ids)
+    static constexpr std::uint32_t group_floats = group * rows;  ///< floats per group
     SoaLayout layout = SoaLayout::edges;
-    std::vector<float> a[3], b[3], c[3];
+    std::uint32_t slots = 0;  ///< number of slots (without the padding)
+    LargeVector<float> data;  ///< the groups, then one zero group
 
     /// Number of slots (without the padding).
-    std::uint32_t size() const {
-        return a[0].empty() ? 0 : static_cast<std::uint32_t>(a[0].size() - pad);
+    std::uint32_t size() const { return slots; }
+    /// Row r (0..8) of group g: four floats.
+    const float* row(std::uint32_t g, unsigned r) const {
+        return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
+    }
+    /// Coordinate r (0..8, as the rows) of slot s.
+    float at(std::uint32_t s, unsigned r) const { return row(s / group, r)[s % group]; }
+    /// The id stored for slot s (row 9).
+    std::uint32_t id(std::uint32_t s) const {
+        return std::bit_cast<std::uint32_t>(row(s / group, 9)[s % group]);
     }
     /// The vertices of slot s as the scalar methods take them.
     VertexTriangleMethod<float>::Prepared vertices(std::uint32_t s) const;
 };
 
-/// The triangles prims[slot_ids[s]] for every slot s, in `layout`.
+/// The triangles prims[slot_ids[s]] for every slot s, in `layout`, each with the id
+/// ids[slot_ids[s]] (slot_ids[s] itself when ids is empty).
 TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepared> prims,
                               std::span<const std::uint32_t> slot_ids,
-                              SoaLayout layout);
+                              SoaLayout layout,
+                              std::span<const std::uint32_t> ids = {});
 
 /// The accepted hit of a slot range: its slot and hit.
 struct SlotHit {

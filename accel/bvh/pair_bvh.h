@@ -10,6 +10,7 @@
 
 #include "accel/accel.h"
 #include "accel/bvh/bvh.h"
+#include "base/large_pages.h"
 #include "intersect/box/slabs.h"
 
 #include <cassert>
@@ -44,7 +45,7 @@ static_assert(sizeof(PairNode) == 64, "PairNode fills one cache line");
 
 /// A binary BVH of PairNodes; leaves and primitive order as the source Bvh.
 struct PairBvh {
-    std::vector<PairNode> nodes;           ///< inner nodes; nodes[0] is the root when it is inner
+    LargeVector<PairNode> nodes;           ///< inner nodes; nodes[0] is the root when it is inner
     std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
     Bounds3f root_box;                     ///< the root's box (empty when no box was usable)
     std::uint32_t root_child = 0;          ///< root: 0 (inner) or its first slot (leaf)
@@ -53,6 +54,9 @@ struct PairBvh {
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
     std::uint32_t max_leaf_size = 0;       ///< the source's leaf size bound
     double sah_cost = 0;                   ///< the source Bvh's SAH cost (same tree)
+    /// True when tracers should store triangle data in slot order and test whole leaves with the
+    /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
+    bool soa_leaves = true;
 
     /// The same tree as b, in pair nodes.
     static PairBvh convert(const Bvh& b);
@@ -61,13 +65,27 @@ struct PairBvh {
     /// nearer child first. Invalid rays return false before any node.
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return traverse<false, IsRobust>(ray, hit_fn, stats);
+        return traverse<false, IsRobust, false>(ray, hit_fn, stats);
     }
 
     /// Any hit: stops at the first primitive hit_fn reports as blocking.
     template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
     bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return traverse<true, IsRobust>(ray, hit_fn, stats);
+        return traverse<true, IsRobust, false>(ray, hit_fn, stats);
+    }
+
+    /// Closest hit offering whole leaves: leaf_fn(first, count, ray) tests the primitives of
+    /// prim_ids slots [first, first + count), shrinks ray.tmax on a hit and returns true (for
+    /// leaf data stored in slot order: no id indirection while tracing).
+    template <bool IsRobust = false, LeafRangeFn<Rayf> F, StatsSink S = NoStats>
+    bool intersect_leaves(Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        return traverse<false, IsRobust, true>(ray, leaf_fn, stats);
+    }
+
+    /// Any hit offering whole leaves: the first leaf_fn(first, count, ray) returning true ends it.
+    template <bool IsRobust = false, LeafRangeFn<const Rayf> F, StatsSink S = NoStats>
+    bool occluded_leaves(const Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        return traverse<true, IsRobust, true>(ray, leaf_fn, stats);
     }
 
     /// The root box.
@@ -96,7 +114,8 @@ private:
     static int test(
         const PairNode& n, const SlabRay<float>& sr, float tmin, float tmax, float tn[2]);
 
-    template <bool IsAnyHit, bool IsRobust, class R, class F, class S>
+    // hit_fn takes one primitive id (ByRange false) or a whole leaf as (first slot, count).
+    template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
     bool traverse(R& ray, F& hit_fn, S& stats) const {
         if (!is_valid(ray)) {
             return false;
@@ -133,6 +152,17 @@ private:
                     const int c = mask >> 1;
                     cur = {n.child[c], n.count[c], tn[c]};
                     continue;
+                }
+            } else if constexpr (ByRange) {
+                for (std::uint32_t i = 0; i < cur.count; ++i) {
+                    stats.count_prim();
+                }
+                if constexpr (IsAnyHit) {
+                    if (hit_fn(cur.child, cur.count, ray)) {
+                        return true;
+                    }
+                } else {
+                    hit = hit_fn(cur.child, cur.count, ray) || hit;
                 }
             } else {
                 const std::uint32_t end = cur.child + cur.count;
@@ -221,5 +251,6 @@ inline int PairBvh::test(
 #endif
 
 static_assert(Accel<PairBvh>);
+static_assert(LeafRangeAccel<PairBvh>);
 
 }  // namespace rtlab

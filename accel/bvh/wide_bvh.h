@@ -11,6 +11,7 @@
 #include "accel/bvh/bvh.h"
 #include "accel/bvh/wide_kernels.h"
 #include "accel/bvh/wide_node.h"
+#include "base/large_pages.h"
 #include "base/simd.h"
 
 #include <cstdint>
@@ -25,7 +26,7 @@ template <unsigned N>
 struct WideBvh {
     static constexpr unsigned width = N;
 
-    std::vector<WideNode<N>> nodes;        ///< root at 0; empty when no box was usable
+    LargeVector<WideNode<N>> nodes;        ///< root at 0; empty when no box was usable
     std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
