@@ -75,45 +75,27 @@ bool havran_walk(const KdNode* nodes,
             const float split = n.split();
             const std::uint32_t below = index + 1, above = n.above_child();
             const float pe = stack[en].p[a], px = stack[ex].p[a];
-            std::uint32_t near_child, far_child;
+            // A point on the plane touches both children: a primitive lying in the plane may be
+            // referenced by either side only (Havran's Z cases would skip the other), so a child
+            // is visited when either point is on its side or on the plane. Robust mode widens
+            // the plane by each point's rounding bound.
+            float pad_e = 0.0f, pad_x = 0.0f;
             if constexpr (IsRobust) {
-                const float pad_e = havran_pad(ray, a, stack[en].t);
-                const float pad_x = havran_pad(ray, a, stack[ex].t);
-                const bool go_below = pe <= split + pad_e || px <= split + pad_x;
-                const bool go_above = pe >= split - pad_e || px >= split - pad_x;
-                if (!go_above || !go_below) {
-                    index = go_below ? below : above;
-                    continue;
-                }
-                near_child = sr.neg[a] ? above : below;
-                far_child = sr.neg[a] ? below : above;
-            } else {
-                if (pe <= split) {
-                    if (px <= split) {
-                        index = below;  // both points at or below the split (N cases, in-plane Z)
-                        continue;
-                    }
-                    if (pe == split) {
-                        index = above;  // entering on the plane, leaving above (Z)
-                        continue;
-                    }
-                    near_child = below;  // crossing upwards: below, then above
-                    far_child = above;
-                } else {
-                    if (split < px) {
-                        index = above;  // entry above, exit above the split (P cases)
-                        continue;
-                    }
-                    near_child = above;  // crossing downwards: above, then below
-                    far_child = below;
-                }
+                pad_e = havran_pad(ray, a, stack[en].t);
+                pad_x = havran_pad(ray, a, stack[ex].t);
             }
+            const bool go_below = pe <= split + pad_e || px <= split + pad_x;
+            const bool go_above = pe >= split - pad_e || px >= split - pad_x;
+            if (!go_above || !go_below) {
+                index = go_below ? below : above;  // the N and P cases
+                continue;
+            }
+            const std::uint32_t near_child = sr.neg[a] ? above : below;
+            const std::uint32_t far_child = sr.neg[a] ? below : above;
             // The crossing of the split plane becomes the near child's exit point and the far
             // child's entry point (Havran: push it, skipping the slot of the current entry).
             float t = (split - sr.org[a]) * sr.inv_dir[a];
-            if constexpr (IsRobust) {
-                t = t < stack[en].t ? stack[en].t : (t > stack[ex].t ? stack[ex].t : t);
-            }
+            t = t < stack[en].t ? stack[en].t : (t > stack[ex].t ? stack[ex].t : t);
             const std::uint32_t prev = ex;
             if (++ex == en) {
                 ++ex;

@@ -65,15 +65,7 @@ struct KdTree {
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
         return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            auto leaf = [&](std::uint32_t first, std::uint32_t count) {
-                for (std::uint32_t i = first; i < first + count; ++i) {
-                    if (visit(prim_ids[i])) {
-                        return true;
-                    }
-                }
-                return false;
-            };
-            return walk_leaves<IsRobust>(r, stats, leaf);
+            return walk_ids<IsRobust>(r, stats, visit);
         });
     }
 
@@ -101,15 +93,7 @@ struct KdTree {
     template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
     bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
         return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            auto leaf = [&](std::uint32_t first, std::uint32_t count) {
-                for (std::uint32_t i = first; i < first + count; ++i) {
-                    if (visit(prim_ids[i])) {
-                        return true;
-                    }
-                }
-                return false;
-            };
-            return walk_leaves<IsRobust>(r, stats, leaf);
+            return walk_ids<IsRobust>(r, stats, visit);
         });
     }
 
@@ -161,6 +145,20 @@ private:
                                                                  t_exit, stats, leaf);
         }
         return tvalue_walk<IsRobust>(ray, sr, t_enter, t_exit, stats, leaf);
+    }
+
+    /// walk_leaves offering each leaf's primitive ids to visit(id) one by one (true stops).
+    template <bool IsRobust, class S, class Visit>
+    bool walk_ids(Rayf& ray, S& stats, Visit& visit) const {
+        auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t i = first; i < first + count; ++i) {
+                if (visit(prim_ids[i])) {
+                    return true;
+                }
+            }
+            return false;
+        };
+        return walk_leaves<IsRobust>(ray, stats, leaf);
     }
 
     /// The t-value walk (pbrt): a stack of (node, t_enter, t_exit). After a leaf, only subtrees
