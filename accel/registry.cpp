@@ -95,6 +95,16 @@ const ParamSpec perfect = integer_param("perfect",
                                         1,
                                         "1: perfect splits (straddling triangles clipped to each "
                                         "side; slower build), 0: boxes cut at the plane");
+const ParamSpec kd_traversal = choice_param("traversal",
+                                            0,
+                                            {"havran", "tvalue"},
+                                            "havran: TA^B_rec with entry/exit points (Havran "
+                                            "2000); tvalue: pbrt's (node, t_enter, t_exit) stack");
+const ParamSpec kd_leaves = choice_param("leaves",
+                                         0,
+                                         {"soa", "ids"},
+                                         "soa: tracers test whole leaves with SIMD kernels on "
+                                         "slot-ordered data; ids: one primitive id at a time");
 const ParamSpec density = real_param("density",
                                      static_cast<double>(grid_default.density),
                                      1e-3,
@@ -139,6 +149,8 @@ KdTree::Config kd_config(const AccelSpec& s) {
     c.min_leaf_size = as_u32(s.value_or("min_leaf", c.min_leaf_size));
     c.perfect_splits = s.value_or("perfect", c.perfect_splits ? 1 : 0) != 0;
     c.threads = as_u32(s.value_or("threads", c.threads));
+    c.traversal = s.value_or("traversal", 0) == 0 ? KdTraversal::havran : KdTraversal::tvalue;
+    c.soa_leaves = s.value_or("leaves", 0) == 0;
     return c;
 }
 
@@ -252,11 +264,11 @@ const AccelEntry registry_rows[] = {
      &wide_row<8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},
      &row<build_kdtree_sah, kd_config>},
     {"kdtree:median",
      "kd-tree, spatial median of the longest axis, SAH termination, parallel with TBB",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads},
+     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},
      &row<build_kdtree_median, kd_config>},
     {"grid:uniform",
      "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",

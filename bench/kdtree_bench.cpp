@@ -27,6 +27,7 @@
 #include <ctime>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <tbb/global_control.h>
 #include <vector>
@@ -36,14 +37,17 @@ namespace {
 using namespace rtlab;
 using namespace rtlab::bench;
 
-/// The structures compared: the kd-tree with perfect splits on and off, and the binary BVHs.
+/// The structures compared: the kd-tree with perfect splits on and off, the session-5 kd-tree
+/// traversal (t-value stack, one primitive id at a time) for the before/after, and the binary
+/// BVHs.
 std::vector<std::string> kd_contenders() {
     if (specs_named()) {
         return bench_specs();
     }
     std::vector<std::string> out;
-    for (const char* s : {"kdtree:sah", "kdtree:sah,perfect=0", "bvh:binned", "bvh:pbinned",
-                          "bvh:sweep", "bvh:pair"}) {
+    for (const char* s :
+         {"kdtree:sah", "kdtree:sah,perfect=0", "kdtree:sah,traversal=tvalue,leaves=ids",
+          "bvh:binned", "bvh:pbinned", "bvh:sweep", "bvh:pair"}) {
         out.push_back(parse_accel_spec(s).canonical());
     }
     return out;
@@ -55,6 +59,24 @@ bool is_binary_bvh(const std::string& spec) {
 
 bool is_kdtree(const std::string& spec) {
     return spec.starts_with("kdtree");
+}
+
+/// A canonical spec without its traversal= and leaves= settings (which leave the tree alone).
+std::string without_walk(const std::string& spec) {
+    std::string out;
+    std::size_t start = 0;
+    while (start <= spec.size()) {
+        const std::size_t end = std::min(spec.find(',', start), spec.size());
+        const std::string part = spec.substr(start, end - start);
+        if (!part.starts_with("traversal=") && !part.starts_with("leaves=")) {
+            if (!out.empty()) {
+                out += ',';
+            }
+            out += part;
+        }
+        start = end + 1;
+    }
+    return out;
 }
 
 std::vector<std::string> kd_scenes() {
@@ -183,8 +205,11 @@ void bm_build(benchmark::State& state, const std::string& scene, int threads) {
     };
     // The kd-trees against the binned builders (the reference is bvh:binned).
     std::vector<std::string> specs;
+    // traversal= and leaves= do not change the tree: one kd row per build setting.
+    std::set<std::string> kd_builds;
     for (const std::string& spec : kd_contenders()) {
-        if (is_kdtree(spec) || spec.starts_with("bvh:binned") || spec.starts_with("bvh:pbinned")) {
+        if ((is_kdtree(spec) && kd_builds.insert(without_walk(spec)).second) ||
+            spec.starts_with("bvh:binned") || spec.starts_with("bvh:pbinned")) {
             specs.push_back(spec);
         }
     }

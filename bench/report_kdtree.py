@@ -14,7 +14,7 @@ import sys
 
 def short(spec):
     """The spec without parameters at their default (the bench's canonical specs list all)."""
-    keep = {"perfect", "from"}
+    keep = {"perfect", "from", "traversal", "leaves"}
     name, *params = spec.split(",")
     shown = [p for p in params if p.split("=")[0] in keep]
     return ",".join([name] + shown)

@@ -18,7 +18,8 @@ TEST_CASE("a spec names every parameter in canonical order, defaults included", 
     CHECK(parse_accel_spec("bvh:binned,bins=32,max_leaf=8").canonical() ==
           "bvh:binned,max_leaf=8,bins=32,ct=1,ci=1,threads=0");
     CHECK(parse_accel_spec("kdtree:sah,ct=1,ci=80,empty_bonus=0.5").canonical() ==
-          "kdtree:sah,ct=1,ci=80,empty_bonus=0.5,max_depth=0,min_leaf=1,perfect=1,threads=0");
+          "kdtree:sah,ct=1,ci=80,empty_bonus=0.5,max_depth=0,min_leaf=1,perfect=1,threads=0,"
+          "traversal=havran,leaves=soa");
     CHECK(parse_accel_spec("grid:uniform,density=4").canonical() ==
           "grid:uniform,density=4,max_res=512,threads=0");
     CHECK(parse_accel_spec("brute").canonical() == "brute");

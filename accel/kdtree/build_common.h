@@ -80,6 +80,8 @@ inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {
     t.max_depth = resolve_max_depth(cfg, present);
     t.traversal_cost = cfg.traversal_cost;
     t.intersection_cost = cfg.intersection_cost;
+    t.traversal = cfg.traversal;
+    t.soa_leaves = cfg.soa_leaves;
     return t;
 }
 

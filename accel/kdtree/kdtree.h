@@ -1,11 +1,15 @@
 #pragma once
 // kd-tree: 8-byte nodes, built by the O(N log N) SAH sweep of Wald & Havran 2006 (build_sah.cpp)
 // or by spatial medians (build_median.cpp), both listed in accel/registry.cpp; traversed front to
-// back with a stack of (node, t_enter, t_exit) as in Havran's thesis (2000, TA_rec_B) and pbrt. A
+// back either by Havran's TA^B_rec (thesis 2000: entry and exit points on the stack,
+// accel/kdtree/havran.h) or by pbrt's stack of (node, t_enter, t_exit) (spec `traversal=`). A
 // primitive may be referenced by several leaves, so a hit beyond the current leaf does not end the
-// traversal. Cost per ray: O(depth) inner-node steps per leaf visited plus the leaf primitives.
+// traversal. Leaves are ranges of prim_ids, so tracers may store triangles in that order and test
+// a whole leaf with a SIMD kernel (LeafRangeAccel, spec `leaves=`). Cost per ray: O(depth)
+// inner-node steps per leaf visited plus the leaf primitives.
 
 #include "accel/accel.h"
+#include "accel/kdtree/havran.h"
 #include "accel/kdtree/node.h"
 #include "accel/window_leaf.h"
 #include "intersect/box/slabs.h"
@@ -16,6 +20,10 @@
 #include <vector>
 
 namespace rtlab {
+
+/// How KdTree walks its nodes: Havran's TA^B_rec (entry and exit points, accel/kdtree/havran.h)
+/// or pbrt's t-value stack; both visit the same leaves in the same order up to rounding.
+enum class KdTraversal : std::uint8_t { havran, tvalue };
 
 /// A kd-tree over primitive boxes; nodes[0] is the root, prim_ids holds the leaves' lists.
 struct KdTree {
@@ -31,6 +39,8 @@ struct KdTree {
         /// off, or without a clip, it is its box cut at the plane.
         bool perfect_splits = true;
         std::uint32_t threads = 0;  ///< TBB threads of the SAH build (0: all allowed); same tree
+        KdTraversal traversal = KdTraversal::havran;  ///< copied to the tree (not a build choice)
+        bool soa_leaves = true;                       ///< copied to the tree (not a build choice)
     };
 
     /// Deepest possible leaf whatever the configuration; sizes the traversal stack.
@@ -43,6 +53,11 @@ struct KdTree {
     std::uint32_t max_depth = 0;          ///< the depth limit the build used
     float traversal_cost = 1.0f;          ///< K_T the build used (for info().sah_cost)
     float intersection_cost = 1.5f;       ///< K_I the build used (for info().sah_cost)
+    KdTraversal traversal = KdTraversal::havran;  ///< the walk intersect/occluded use
+    /// True when tracers should store triangle data in slot order (prim_ids order, duplicates
+    /// included) and test whole leaves with the SIMD leaf kernels (intersect_leaves); false
+    /// keeps the per-id path (for comparisons).
+    bool soa_leaves = true;
 
     /// Closest hit: leaves are visited front to back and every primitive in them is offered to
     /// hit_fn; traversal ends once ray.tmax (shrunk by hit_fn) lies within the current leaf.
@@ -50,16 +65,49 @@ struct KdTree {
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
         return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return traverse<IsRobust>(r, stats, visit);
+            return walk_ids<IsRobust>(r, stats, visit);
         });
+    }
+
+    /// Closest hit offering whole leaves: leaf_fn(first, count, ray) tests the primitives of
+    /// prim_ids slots [first, first + count) in slot order, shrinks ray.tmax on a hit and returns
+    /// true; same leaves, order and stop rule as intersect. For leaf data stored in slot order
+    /// (a primitive in several leaves is stored once per reference).
+    template <bool IsRobust = false, LeafRangeFn<Rayf> F, StatsSink S = NoStats>
+    bool intersect_leaves(Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        bool hit = false;
+        auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+            if (count != 0) {
+                for (std::uint32_t i = 0; i < count; ++i) {
+                    stats.count_prim();
+                }
+                hit = leaf_fn(first, count, ray) || hit;
+            }
+            return false;
+        };
+        walk_leaves<IsRobust>(ray, stats, leaf);
+        return hit;
     }
 
     /// Any hit: stops at the first primitive hit_fn reports as blocking.
     template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
     bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
         return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return traverse<IsRobust>(r, stats, visit);
+            return walk_ids<IsRobust>(r, stats, visit);
         });
+    }
+
+    /// Any hit offering whole leaves: the first leaf_fn(first, count, ray) returning true ends it.
+    template <bool IsRobust = false, LeafRangeFn<const Rayf> F, StatsSink S = NoStats>
+    bool occluded_leaves(const Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
+        Rayf r = ray;
+        auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t i = 0; i < count; ++i) {
+                stats.count_prim();
+            }
+            return count != 0 && static_cast<bool>(leaf_fn(first, count, ray));
+        };
+        return walk_leaves<IsRobust>(r, stats, leaf);
     }
 
     /// Union of the non-empty primitive boxes.
@@ -76,12 +124,12 @@ struct KdTree {
     friend bool operator==(const KdTree&, const KdTree&) = default;
 
 private:
-    /// Front-to-back walk over the leaves the ray's window meets. visit(id) is called
-    /// for every primitive of a leaf and returns true to stop (any hit). After a leaf, only
-    /// subtrees whose window starts at or before ray.tmax are visited, so the walk ends once
-    /// ray.tmax <= that leaf's t_exit. Returns whether visit stopped it.
-    template <bool IsRobust, class S, class Visit>
-    bool traverse(Rayf& ray, S& stats, Visit&& visit) const {
+    /// Checks and clips the ray, then walks the leaves its window meets front to back with the
+    /// chosen traversal, calling leaf(first, count) for each (true stops the walk). Rays with a
+    /// zero or denormal direction component (the only ones that can lie in a split plane) take
+    /// the t-value walk, which visits both children of such a plane. Returns whether leaf stopped.
+    template <bool IsRobust, class S, class Leaf>
+    bool walk_leaves(Rayf& ray, S& stats, Leaf& leaf) const {
         if (!is_valid(ray) || nodes.empty()) {
             return false;
         }
@@ -91,6 +139,38 @@ private:
         if (!clip_slabs<IsRobust>(scene_bounds.lo, scene_bounds.hi, sr, t_enter, t_exit)) {
             return false;
         }
+        if (traversal == KdTraversal::havran && std::isfinite(sr.inv_dir.x) &&
+            std::isfinite(sr.inv_dir.y) && std::isfinite(sr.inv_dir.z)) {
+            return kd_detail::havran_walk<IsRobust, depth_limit>(nodes.data(), ray, sr, t_enter,
+                                                                 t_exit, stats, leaf);
+        }
+        return tvalue_walk<IsRobust>(ray, sr, t_enter, t_exit, stats, leaf);
+    }
+
+    /// walk_leaves offering each leaf's primitive ids to visit(id) one by one (true stops).
+    template <bool IsRobust, class S, class Visit>
+    bool walk_ids(Rayf& ray, S& stats, Visit& visit) const {
+        auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t i = first; i < first + count; ++i) {
+                if (visit(prim_ids[i])) {
+                    return true;
+                }
+            }
+            return false;
+        };
+        return walk_leaves<IsRobust>(ray, stats, leaf);
+    }
+
+    /// The t-value walk (pbrt): a stack of (node, t_enter, t_exit). After a leaf, only subtrees
+    /// whose window starts at or before ray.tmax are visited, so the walk ends once ray.tmax <=
+    /// that leaf's t_exit.
+    template <bool IsRobust, class S, class Leaf>
+    bool tvalue_walk(Rayf& ray,
+                     const SlabRay<float>& sr,
+                     float t_enter,
+                     float t_exit,
+                     S& stats,
+                     Leaf& leaf) const {
         struct Entry {
             std::uint32_t node;
             float t_enter, t_exit;
@@ -138,13 +218,8 @@ private:
                     continue;
                 }
                 // Neither (only for a NaN-free empty window, which clip_slabs rules out).
-            } else {
-                const std::uint32_t end = n.prim_offset() + n.prim_count();
-                for (std::uint32_t i = n.prim_offset(); i < end; ++i) {
-                    if (visit(prim_ids[i])) {
-                        return true;
-                    }
-                }
+            } else if (leaf(n.prim_offset(), n.prim_count())) {
+                return true;
             }
             // Pop the next subtree whose window starts at or before ray.tmax. Once ray.tmax <=
             // this leaf's t_exit, the front-to-back order leaves only subtrees starting at or
@@ -167,5 +242,6 @@ private:
 };
 
 static_assert(Accel<KdTree>);
+static_assert(LeafRangeAccel<KdTree>);
 
 }  // namespace rtlab
