@@ -2,8 +2,10 @@
 // Havran's recursive ray traversal TA^B_rec (V. Havran, "Heuristic Ray Shooting Algorithms", PhD
 // thesis, Czech Technical University, 2000, appendix C): the stack holds entry and exit *points*
 // (position and signed distance t) instead of t-intervals, so each inner node is classified by
-// comparing the coordinates of the current entry and exit points with the split (the N, P and Z
-// cases) and a distance is computed only when the ray crosses the plane inside the node.
+// comparing the coordinates of the current entry and exit points with the split (the N and P
+// cases) and a distance is computed only when the ray crosses the plane inside the node. Unlike
+// Havran's Z cases, a point exactly on the split visits both children (a primitive lying in the
+// plane may be referenced by one side only).
 // Internal to accel/kdtree/kdtree.h: the caller has clipped the ray to the scene box and routes
 // rays with a zero (or denormal) direction component, the only ones that can lie in a split
 // plane, to the t-value walk, which visits both children of such a plane.
