@@ -54,23 +54,7 @@ void bm_trace(benchmark::State& state, std::string spec, std::string scene, RayK
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
     const SceneTracer& t = tracer(scene, spec);
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits);
-            benchmark::DoNotOptimize(hits.data());
-        }
-    }
-    TraversalStats st;
-    if (kind == RayKind::shadow) {
-        t.occluded(rays, blockers, &st);
-    } else {
-        t.intersect(rays, hits, &st);
-    }
+    const TraversalStats st = time_and_count(state, t, rays, kind);
     const auto n = static_cast<double>(rays.size());
     const double nodes = static_cast<double>(st.nodes) / n;
     const double prims = static_cast<double>(st.prims) / n;

@@ -113,23 +113,7 @@ void bm_trace(benchmark::State& state, TracerKey key, RayKind kind, int threads)
                                     static_cast<std::size_t>(threads));
     const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
     const SceneTracer& t = tracer(key);
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits);
-            benchmark::DoNotOptimize(hits.data());
-        }
-    }
-    TraversalStats st;
-    if (kind == RayKind::shadow) {
-        t.occluded(rays, blockers, &st);
-    } else {
-        t.intersect(rays, hits, &st);
-    }
+    const TraversalStats st = time_and_count(state, t, rays, kind);
     const auto n = static_cast<double>(rays.size());
     const auto prims = static_cast<double>(t.primitive_count());
     double bytes = 0;

@@ -25,23 +25,7 @@ using namespace rtlab::bench;
 void bm_trace(benchmark::State& state, std::string accel, std::string scene, RayKind kind) {
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
     const SceneTracer& t = bench_tracer(scene, accel);
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits);
-            benchmark::DoNotOptimize(hits.data());
-        }
-    }
-    TraversalStats st;
-    if (kind == RayKind::shadow) {
-        t.occluded(rays, blockers, &st);
-    } else {
-        t.intersect(rays, hits, &st);
-    }
+    const TraversalStats st = time_and_count(state, t, rays, kind);
     const auto n = static_cast<double>(rays.size());
     state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["nodes/ray"] = static_cast<double>(st.nodes) / n;

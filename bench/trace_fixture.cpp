@@ -146,6 +146,30 @@ const SceneTracer& bench_tracer(const std::string& scene, const std::string& acc
     return *slot;
 }
 
+TraversalStats time_and_count(benchmark::State& state,
+                              const SceneTracer& t,
+                              const std::vector<Rayf>& rays,
+                              RayKind kind) {
+    std::vector<Hit> hits(rays.size());
+    std::vector<std::uint32_t> blockers(rays.size());
+    for (auto _ : state) {
+        if (kind == RayKind::shadow) {
+            t.occluded(rays, blockers);
+            benchmark::DoNotOptimize(blockers.data());
+        } else {
+            t.intersect(rays, hits);
+            benchmark::DoNotOptimize(hits.data());
+        }
+    }
+    TraversalStats st;
+    if (kind == RayKind::shadow) {
+        t.occluded(rays, blockers, &st);
+    } else {
+        t.intersect(rays, hits, &st);
+    }
+    return st;
+}
+
 std::vector<int> build_soup_sizes() {
     if (quick_mode()) {
         return {0, 2, 4};  // 1024 .. 16384 triangles

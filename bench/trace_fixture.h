@@ -52,6 +52,13 @@ std::vector<std::string> trace_scene_names();
 /// A SceneTracer for (scene, accel) with default methods, built once per process.
 const SceneTracer& bench_tracer(const std::string& scene, const std::string& accel);
 
+/// Traces rays with t once per state iteration (occluded for shadow rays, intersect for the
+/// others; the timed loop), then once more counting; returns that pass's counts.
+TraversalStats time_and_count(benchmark::State& state,
+                              const SceneTracer& t,
+                              const std::vector<Rayf>& rays,
+                              RayKind kind);
+
 /// Soup size factors of the build sweep: 1024 * 2^sf triangles, up to ~1e6 (quick: 16384).
 std::vector<int> build_soup_sizes();
 

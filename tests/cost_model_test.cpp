@@ -52,6 +52,20 @@ bool is_grid(const AnyAccel& a) {
     return std::holds_alternative<Grid>(a) || std::holds_alternative<TwoLevelGrid>(a);
 }
 
+/// Counts of closest-hit walks of rays through accel whose primitives never report a hit (so no
+/// ray stops early).
+TraversalStats count_without_hits(const AnyAccel& accel, const std::vector<Rayf>& rays) {
+    TraversalStats st;
+    visit_accel(accel, [&](const auto& s) {
+        for (const Rayf& ray : rays) {
+            Rayf r = ray;
+            s.intersect(
+                r, [](std::uint32_t, Rayf&) { return false; }, st);
+        }
+    });
+    return st;
+}
+
 }  // namespace
 
 TEST_CASE("the cost model predicts the counts of rays that never stop early", "[accel][cost]") {
@@ -61,14 +75,7 @@ TEST_CASE("the cost model predicts the counts of rays that never stop early", "[
         CAPTURE(entry.name);
         const AnyAccel accel = build_accel(default_spec(entry), soup.input());
         const std::vector<Rayf> rays = random_lines(accel_bounds(accel), 29, 20000);
-        TraversalStats st;
-        visit_accel(accel, [&](const auto& s) {
-            for (const Rayf& ray : rays) {
-                Rayf r = ray;
-                s.intersect(
-                    r, [](std::uint32_t, Rayf&) { return false; }, st);
-            }
-        });
+        const TraversalStats st = count_without_hits(accel, rays);
         const CostEstimate e = expected_cost(accel);
         const double nodes = static_cast<double>(st.nodes) / static_cast<double>(st.rays);
         const double prims = static_cast<double>(st.prims) / static_cast<double>(st.rays);
@@ -98,14 +105,7 @@ TEST_CASE("the grid model is exact where the mailbox never overflows", "[accel][
         CAPTURE(spec);
         const AnyAccel accel = build_accel(spec, {boxes, {}});
         const std::vector<Rayf> rays = random_lines(accel_bounds(accel), 5, 20000);
-        TraversalStats st;
-        visit_accel(accel, [&](const auto& s) {
-            for (const Rayf& ray : rays) {
-                Rayf r = ray;
-                s.intersect(
-                    r, [](std::uint32_t, Rayf&) { return false; }, st);
-            }
-        });
+        const TraversalStats st = count_without_hits(accel, rays);
         const CostEstimate e = expected_cost(accel);
         const double n = static_cast<double>(st.rays);
         CHECK(static_cast<double>(st.nodes) / n == Approx(e.nodes).epsilon(0.04));
