@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <span>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 #include <vector>
@@ -247,7 +248,7 @@ double flat_epo(const FlatBvh& f, std::span<const Trianglef> triangles, const Co
 void add_grid_cells(const GridFrame& g,
                     const AreaRatio& p,
                     const std::uint32_t* start,
-                    const std::vector<std::uint32_t>& prims,
+                    std::span<const std::uint32_t> prims,
                     std::vector<Bounds3f>& span,
                     CostEstimate& e) {
     e.nodes += static_cast<double>(g.cell_count()) * p(Bounds3f(g.box.lo, g.box.lo + g.cell_size));

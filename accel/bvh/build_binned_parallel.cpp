@@ -252,7 +252,7 @@ private:
     /// A task's share of the output: nodes[0] is its root (it lands in the parent chunk's slot),
     /// nodes[1..] its pairs; subs are chunks whose roots fill the given local slots.
     struct Chunk {
-        std::vector<BvhNode> nodes;
+        BvhNodes nodes;
         struct Sub {
             std::uint32_t slot;
             std::unique_ptr<Chunk> chunk;
@@ -624,7 +624,7 @@ private:
         bvh.nodes.resize(next);
         tbb::parallel_for(std::size_t{0}, places.size(), [&](std::size_t p) {
             const Place& at = places[p];
-            const std::vector<BvhNode>& src = at.chunk->nodes;
+            const BvhNodes& src = at.chunk->nodes;
             for (std::size_t i = 0; i < src.size(); ++i) {
                 BvhNode n = src[i];
                 if (!n.is_leaf() && n.first == 0) {

@@ -58,9 +58,7 @@ Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
     return {mid, axis};
 }
 
-void TopDown::splice(std::vector<BvhNode>& nodes,
-                     std::uint32_t slot,
-                     const std::vector<BvhNode>& sub) {
+void TopDown::splice(BvhNodes& nodes, std::uint32_t slot, const BvhNodes& sub) {
     const auto shift = static_cast<std::uint32_t>(nodes.size()) - 1;
     const auto moved = [shift](BvhNode node) {
         if (!node.is_leaf()) {

@@ -85,7 +85,7 @@ private:
     // depth-first pair order (both children, then the left subtree, then the right). In
     // parallel, large children build into their own arrays, spliced in that same order.
     template <class SplitFn>
-    void build_node(std::vector<BvhNode>& nodes,
+    void build_node(BvhNodes& nodes,
                     SplitFn& split,
                     std::uint32_t node,
                     std::uint32_t b,
@@ -111,7 +111,7 @@ private:
         nodes[node] = BvhNode::make_inner(box, left, s->axis);
         const Bounds3f left_box = range_bounds(b, s->mid), right_box = range_bounds(s->mid, e);
         if (parallel && n >= parallel_min) {
-            std::vector<BvhNode> l(1), r(1);
+            BvhNodes l(1), r(1);
             tbb::parallel_invoke(
                 [&] { build_node(l, split, 0, b, s->mid, depth + 1, left_box, true); },
                 [&] { build_node(r, split, 0, s->mid, e, depth + 1, right_box, true); });
@@ -125,9 +125,7 @@ private:
 
     /// Puts sub[0] at nodes[slot] and appends sub[1..]: index k >= 1 of sub moves to
     /// nodes.size() + k - 1, so child links are shifted by that much.
-    static void splice(std::vector<BvhNode>& nodes,
-                       std::uint32_t slot,
-                       const std::vector<BvhNode>& sub);
+    static void splice(BvhNodes& nodes, std::uint32_t slot, const BvhNodes& sub);
 };
 
 }  // namespace rtlab::bvh_detail

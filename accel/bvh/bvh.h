@@ -7,6 +7,7 @@
 
 #include "accel/accel.h"
 #include "accel/bvh/node.h"
+#include "base/large_pages.h"
 #include "intersect/box/slabs.h"
 
 #include <cassert>
@@ -15,6 +16,9 @@
 #include <vector>
 
 namespace rtlab {
+
+/// A binary BVH's nodes: in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's.
+using BvhNodes = LargeVector<BvhNode>;
 
 /// A binary BVH: the root at 0, then child pairs in the order a depth-first build splits their
 /// parents (a left subtree's pairs precede its right sibling's), and the leaves' primitive ids.
@@ -30,7 +34,7 @@ struct Bvh {
         friend bool operator==(const Config&, const Config&) = default;
     };
 
-    std::vector<BvhNode> nodes;            ///< root at 0; empty when no box was usable
+    BvhNodes nodes;                        ///< root at 0; empty when no box was usable
     std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)

@@ -226,7 +226,6 @@ AccelInfo TwoLevelGrid::info() const {
     i.max_depth = top_sub.empty() ? 0 : 1;
     i.bytes = (top_sub.size() + cell_start.size() + cell_prims.size()) * sizeof(std::uint32_t) +
               subs.size() * sizeof(SubGrid);
-    const std::size_t present = present_count(prim_present);
     const double box_area = static_cast<double>(top.box.surface_area());
     const auto area_ratio = [&](const Vec3f& size) {
         return box_area > 0 ? static_cast<double>(Bounds3f(Vec3f{}, size).surface_area()) / box_area
@@ -234,17 +233,10 @@ AccelInfo TwoLevelGrid::info() const {
     };
     i.sah_cost = static_cast<double>(top_sub.size()) * area_ratio(top.cell_size);
     for (const SubGrid& s : subs) {
-        const double p = area_ratio(s.frame.cell_size);
-        for (std::size_t c = 0; c < s.frame.cell_count(); ++c) {
-            const std::uint32_t n = cell_start[s.first_cell + c + 1] - cell_start[s.first_cell + c];
-            i.leaves += n > 0 ? 1 : 0;
-            i.sah_cost += p * (1.0 + 1.5 * static_cast<double>(n));
-        }
+        add_cell_costs(i, cell_start, s.first_cell, s.frame.cell_count(),
+                       area_ratio(s.frame.cell_size));
     }
-    if (present > 0) {
-        i.bytes_per_prim = static_cast<double>(i.bytes) / static_cast<double>(present);
-        i.refs_per_prim = static_cast<double>(cell_prims.size()) / static_cast<double>(present);
-    }
+    set_per_prim_figures(i, cell_prims.size(), prim_present);
     return i;
 }
 

@@ -124,19 +124,11 @@ AccelInfo Grid::info() const {
     const std::size_t cells = cell_count();
     i.nodes = cells;
     i.bytes = (cell_start.size() + cell_prims.size()) * sizeof(std::uint32_t);
-    const std::size_t present = present_count(prim_present);
     const double box_area = static_cast<double>(box.surface_area());
     const Bounds3f one_cell(box.lo, box.lo + cell_size);
     const double p = box_area > 0 ? static_cast<double>(one_cell.surface_area()) / box_area : 1.0;
-    for (std::size_t c = 0; c < cells; ++c) {
-        const std::uint32_t n = cell_start[c + 1] - cell_start[c];
-        i.leaves += n > 0 ? 1 : 0;
-        i.sah_cost += p * (1.0 + 1.5 * static_cast<double>(n));
-    }
-    if (present > 0) {
-        i.bytes_per_prim = static_cast<double>(i.bytes) / static_cast<double>(present);
-        i.refs_per_prim = static_cast<double>(cell_prims.size()) / static_cast<double>(present);
-    }
+    add_cell_costs(i, cell_start, 0, cells, p);
+    set_per_prim_figures(i, cell_prims.size(), prim_present);
     return i;
 }
 

@@ -8,6 +8,7 @@
 #include "accel/accel.h"
 #include "accel/grid/dda.h"
 #include "accel/window_leaf.h"
+#include "base/large_pages.h"
 
 #include <array>
 #include <cmath>
@@ -29,8 +30,9 @@ struct GridConfig {
 struct Grid : GridFrame {
     using Config = GridConfig;
 
-    std::vector<std::uint32_t> cell_start;  ///< CSR offsets, size cells + 1
-    std::vector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
+    // Cells in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's nodes.
+    LargeVector<std::uint32_t> cell_start;  ///< CSR offsets, size cells + 1
+    LargeVector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
     std::vector<bool> prim_present;         ///< per primitive id: its box passes is_usable_box
 
     /// Closest hit: cells are walked front to back and their primitives offered to hit_fn (once

@@ -11,6 +11,7 @@
 #include "accel/accel.h"
 #include "accel/grid/dda.h"
 #include "accel/window_leaf.h"
+#include "base/large_pages.h"
 
 #include <cstdint>
 #include <limits>
@@ -41,11 +42,12 @@ struct TwoLevelGrid {
     using Config = TwoLevelGridConfig;
     static constexpr std::uint32_t no_sub = std::numeric_limits<std::uint32_t>::max();
 
-    GridFrame top;                          ///< the top grid (res all 0 when no primitive)
-    std::vector<std::uint32_t> top_sub;     ///< per top cell: index into subs, or no_sub
-    std::vector<SubGrid> subs;              ///< the sub-grids, in top-cell order
-    std::vector<std::uint32_t> cell_start;  ///< CSR offsets over all sub-grid cells (+ 1)
-    std::vector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
+    GridFrame top;                       ///< the top grid (res all 0 when no primitive)
+    std::vector<std::uint32_t> top_sub;  ///< per top cell: index into subs, or no_sub
+    std::vector<SubGrid> subs;           ///< the sub-grids, in top-cell order
+    // Cells in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's nodes.
+    LargeVector<std::uint32_t> cell_start;  ///< CSR offsets over all sub-grid cells (+ 1)
+    LargeVector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
     std::vector<bool> prim_present;         ///< per primitive id: its box passes is_usable_box
 
     /// Closest hit: top cells front to back, in each its sub-grid's cells front to back; each

@@ -75,8 +75,8 @@ struct Plane {
 /// Nodes and leaf lists of one subtree in pre-order, indices relative to the chunk; a leaf with
 /// count KdNode::max_index stands for the chunk subs[payload] (built by another task).
 struct Chunk {
-    std::vector<KdNode> nodes;
-    std::vector<std::uint32_t> prim_ids;
+    LargeVector<KdNode> nodes;
+    LargeVector<std::uint32_t> prim_ids;
     std::vector<std::unique_ptr<Chunk>> subs;
 };
 

@@ -12,6 +12,7 @@
 #include "accel/kdtree/havran.h"
 #include "accel/kdtree/node.h"
 #include "accel/window_leaf.h"
+#include "base/large_pages.h"
 #include "intersect/box/slabs.h"
 
 #include <cmath>
@@ -46,8 +47,9 @@ struct KdTree {
     /// Deepest possible leaf whatever the configuration; sizes the traversal stack.
     static constexpr std::uint32_t depth_limit = 64;
 
-    std::vector<KdNode> nodes;            ///< pre-order; an inner node's below child follows it
-    std::vector<std::uint32_t> prim_ids;  ///< leaf primitive lists (caller's primitive ids)
+    // Nodes and lists in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's.
+    LargeVector<KdNode> nodes;            ///< pre-order; an inner node's below child follows it
+    LargeVector<std::uint32_t> prim_ids;  ///< leaf primitive lists (caller's primitive ids)
     Bounds3f scene_bounds;                ///< union of the non-empty primitive boxes
     std::vector<bool> prim_present;       ///< per primitive id: its box passes is_usable_box
     std::uint32_t max_depth = 0;          ///< the depth limit the build used
