@@ -23,6 +23,7 @@ struct TraversalStats {
     void count_ray() { ++rays; }
     void count_node() { ++nodes; }
     void count_prim() { ++prims; }
+    void count_prims(std::uint32_t n) { prims += n; }
     TraversalStats& operator+=(const TraversalStats& o) {
         rays += o.rays;
         nodes += o.nodes;
@@ -36,6 +37,7 @@ struct NoStats {
     void count_ray() {}
     void count_node() {}
     void count_prim() {}
+    void count_prims(std::uint32_t) {}
 };
 
 /// Either NoStats or TraversalStats (passed by reference to traversal).
@@ -44,6 +46,7 @@ concept StatsSink = requires(S& s) {
     s.count_ray();
     s.count_node();
     s.count_prim();
+    s.count_prims(std::uint32_t{});
 };
 
 /// Closest-hit leaf callback: tests primitive `id`; on a hit inside [ray.tmin, ray.tmax] it records

@@ -154,9 +154,7 @@ private:
                     continue;
                 }
             } else if constexpr (ByRange) {
-                for (std::uint32_t i = 0; i < cur.count; ++i) {
-                    stats.count_prim();
-                }
+                stats.count_prims(cur.count);
                 if constexpr (IsAnyHit) {
                     if (hit_fn(cur.child, cur.count, ray)) {
                         return true;

@@ -80,9 +80,7 @@ struct KdTree {
         bool hit = false;
         auto leaf = [&](std::uint32_t first, std::uint32_t count) {
             if (count != 0) {
-                for (std::uint32_t i = 0; i < count; ++i) {
-                    stats.count_prim();
-                }
+                stats.count_prims(count);
                 hit = leaf_fn(first, count, ray) || hit;
             }
             return false;
@@ -104,9 +102,7 @@ struct KdTree {
     bool occluded_leaves(const Rayf& ray, F&& leaf_fn, S&& stats = {}) const {
         Rayf r = ray;
         auto leaf = [&](std::uint32_t first, std::uint32_t count) {
-            for (std::uint32_t i = 0; i < count; ++i) {
-                stats.count_prim();
-            }
+            stats.count_prims(count);
             return count != 0 && static_cast<bool>(leaf_fn(first, count, ray));
         };
         return walk_leaves<IsRobust>(r, stats, leaf);
