@@ -6,7 +6,40 @@
 
 #include "base/simd.h"
 
+#include <bit>
+#include <cstdint>
 #include <immintrin.h>
+
+namespace rtlab {
+
+/// The order in which traversal visits hit children: by entry distance t (the float's bits as a
+/// signed integer made monotone in t) with the lowest 3 bits replaced by the lane, so keys are
+/// distinct, ties and distances within 8 ulps go in lane order, and a sorting network on the
+/// keys carries the lanes along (as Embree's BVH8 traversal packs distance and slot).
+inline std::int32_t lane_order_key(float t, unsigned lane) {
+    const auto b = std::bit_cast<std::int32_t>(t);
+    const std::int32_t mono = b ^ ((b >> 31) & 0x7fffffff);
+    return (mono & ~7) | static_cast<std::int32_t>(lane);
+}
+
+/// The lanes set in mask (at least one; lanes below 8) as lane_order_key(t[lane], lane) in
+/// ascending order in keys[0 .. count) by insertion; returns the count.
+inline unsigned sort_lane_keys_scalar(const float* t, unsigned mask, std::int32_t* keys) {
+    unsigned k = 0;
+    do {
+        const auto i = static_cast<unsigned>(__builtin_ctz(mask));
+        mask &= mask - 1;
+        const std::int32_t key = lane_order_key(t[i], i);
+        unsigned j = k++;
+        for (; j > 0 && keys[j - 1] > key; --j) {
+            keys[j] = keys[j - 1];
+        }
+        keys[j] = key;
+    } while (mask != 0);
+    return k;
+}
+
+}  // namespace rtlab
 
 namespace rtlab::simd_sse2 {
 #define RTLAB_LANES_LEVEL 0

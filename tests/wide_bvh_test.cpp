@@ -11,7 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -99,6 +101,43 @@ TEST_CASE("the SIMD node test of every level equals clip_slabs bit for bit", "[a
     const std::vector<Rayf> lrays = test::random_rays(lattice, seed, 300);
     check_node_test<false, 8>(lattice, lrays);
     check_node_test<true, 8>(lattice, lrays);
+}
+
+TEST_CASE("the 8-lane child order network sorts like lane_order_key", "[accel][wide][simd]") {
+    test::Rng rng(11);
+    const float pool[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -2.5f, 3.0f, 1e30f};
+    for (int round = 0; round < 4000; ++round) {
+        alignas(32) float t[8];
+        for (float& x : t) {
+            // Repeats from a small pool (ties, signed zeros) or values a few ulps apart.
+            x = round % 2 == 0
+                    ? pool[rng.below(8)]
+                    : std::nextafter(1.0f, 2.0f) + static_cast<float>(rng.below(16)) * 1e-7f;
+        }
+        const unsigned mask = 1u + rng.below(255);
+        std::vector<std::int32_t> want;
+        for (unsigned i = 0; i < 8; ++i) {
+            if ((mask >> i) & 1u) {
+                want.push_back(lane_order_key(t[i], i));
+            }
+        }
+        std::sort(want.begin(), want.end());
+        alignas(32) std::int32_t got[8];
+        const unsigned k = sort_lane_keys_scalar(t, mask, got);
+        REQUIRE(std::vector<std::int32_t>(got, got + k) == want);
+        for (const SimdLevel l : runnable_levels()) {
+            CAPTURE(simd_name(l), mask);
+            const unsigned n = l == SimdLevel::avx512 ? simd_avx512::sort_lane_keys8(t, mask, got)
+                               : l == SimdLevel::avx2 ? simd_avx2::sort_lane_keys8(t, mask, got)
+                                                      : simd_sse2::sort_lane_keys8(t, mask, got);
+            REQUIRE(std::vector<std::int32_t>(got, got + n) == want);
+        }
+    }
+    // Keys order by t (signed zeros aside), then by lane.
+    CHECK(lane_order_key(-1.0f, 7) < lane_order_key(-0.5f, 0));
+    CHECK(lane_order_key(-0.5f, 7) < lane_order_key(0.0f, 0));
+    CHECK(lane_order_key(1.0f, 0) < lane_order_key(1.0f, 1));
+    CHECK(lane_order_key(1.0f, 7) < lane_order_key(2.0f, 0));
 }
 
 TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees", "[accel][wide]") {

@@ -9,6 +9,7 @@
 #include "intersect/box/slabs.h"
 
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 
 namespace rtlab {
