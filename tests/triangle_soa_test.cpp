@@ -1,11 +1,14 @@
 // Leaf kernels (trace/triangle_soa.h): every SIMD level the CPU runs gives, bit for bit, the
 // answers of the scalar method applied slot by slot (Möller–Trumbore and watertight), including
-// watertight's exact-zero fallback on shared edges and vertices.
+// watertight's exact-zero fallback on shared edges and vertices; inlined into wide BVH traversal
+// (trace/wide_soa.h), the answers and counts of the leaf-callback traversal.
 
 #include "trace/triangle_soa.h"
 
+#include "accel/any_accel.h"
 #include "base/simd.h"
 #include "support/accel_fixtures.h"
+#include "trace/wide_soa.h"
 
 #include <catch2/catch.hpp>
 
@@ -136,6 +139,87 @@ TEST_CASE("triangle leaf kernels of every SIMD level equal the scalar methods bi
     const std::vector<Rayf> rays = test_rays(seed);
     check_kernel<MollerTrumbore<float>>(prims, rays);
     check_kernel<Watertight<float>>(prims, rays);
+}
+
+/// wide_soa_trace against intersect_leaves/occluded_leaves with the leaf kernel as callback.
+template <class M, bool IsRobust, unsigned N>
+void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vector<Rayf>& rays) {
+    constexpr bool is_wt = std::is_same_v<M, Watertight<float>>;
+    const TriangleSoA soa = make_triangle_soa(soup.triangles, bvh.prim_ids,
+                                              is_wt ? SoaLayout::vertices : SoaLayout::edges);
+    for (const Rayf& ray : rays) {
+        const RayDataOf<M> rd = precompute_ray<M>(ray);
+        const WatertightRay<float>* wr = nullptr;
+        if constexpr (is_wt) {
+            wr = &rd;
+        }
+        Rayf want_ray = ray;
+        std::optional<SlotHit> want;
+        TraversalStats want_st;
+        bvh.template intersect_leaves<IsRobust>(
+            want_ray,
+            [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
+                const auto h = is_wt ? soa_closest_watertight(soa, first, count, r, *wr)
+                                     : soa_closest_mt(soa, first, count, r);
+                want = h ? h : want;
+                return h.has_value();
+            },
+            want_st);
+        std::optional<std::uint32_t> want_any;
+        TraversalStats want_any_st;
+        bvh.template occluded_leaves<IsRobust>(
+            ray,
+            [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
+                want_any = is_wt ? soa_any_watertight(soa, first, count, r, *wr)
+                                 : soa_any_mt(soa, first, count, r);
+                return want_any.has_value();
+            },
+            want_any_st);
+        Rayf got_ray = ray;
+        TraversalStats st, any_st;
+        const auto got = wide_soa_trace<false, IsRobust, is_wt>(bvh, soa, got_ray, wr, st);
+        const auto got_any = wide_soa_trace<true, IsRobust, is_wt>(bvh, soa, ray, wr, any_st);
+        REQUIRE(got.has_value() == want.has_value());
+        REQUIRE(same_bits(got_ray.tmax, want_ray.tmax));
+        if (want) {
+            REQUIRE(got->slot == want->slot);
+            REQUIRE(same_bits(got->hit.u, want->hit.u));
+            REQUIRE(same_bits(got->hit.v, want->hit.v));
+        }
+        REQUIRE(got_any == want_any);
+        REQUIRE(st.rays == want_st.rays);
+        REQUIRE(st.nodes == want_st.nodes);
+        REQUIRE(st.prims == want_st.prims);
+        REQUIRE(any_st.nodes == want_any_st.nodes);
+        REQUIRE(any_st.prims == want_any_st.prims);
+    }
+}
+
+TEST_CASE("leaf kernels inlined into wide BVH traversal give the leaf-callback answers and counts",
+          "[trace][simd][wide]") {
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, seed, 700);
+    const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
+    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1"}) {
+        const AnyAccel accel = build_accel(spec, soup.input());
+        visit_accel(accel, [&](const auto& bvh) {
+            if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {
+                for (const SimdLevel l : simd_levels) {
+                    if (l > simd_supported()) {
+                        continue;
+                    }
+                    CAPTURE(spec, simd_name(l));
+                    const ScopedSimdCap cap(l);
+                    check_inlined<MollerTrumbore<float>, false>(bvh, soup, rays);
+                    check_inlined<MollerTrumbore<float>, true>(bvh, soup, rays);
+                    check_inlined<Watertight<float>, false>(bvh, soup, rays);
+                    check_inlined<Watertight<float>, true>(bvh, soup, rays);
+                }
+            } else {
+                FAIL(spec << " is not a wide BVH");
+            }
+        });
+    }
 }
 
 TEST_CASE("the SIMD level can be capped and reports itself", "[simd]") {

@@ -5,6 +5,7 @@
 // over several translation units (one held ~6 GB and >13 CPU-minutes in release).
 
 #include "trace/batch.h"
+#include "trace/wide_soa.h"
 
 #include <optional>
 #include <stdexcept>
@@ -95,6 +96,20 @@ bool uses_slot_prims(const PrimSet<M>& s, const A&) {
     }
 }
 
+// True when M is the watertight method (leaf kernels on the vertices layout).
+template <class M>
+inline constexpr bool is_watertight = std::is_same_v<M, Watertight<float>>;
+
+// The watertight per-ray set-up the leaf kernels take: rd itself for watertight, else none.
+template <class M>
+const WatertightRay<float>* ray_data_ptr(const RayDataOf<M>& rd) {
+    if constexpr (is_watertight<M>) {
+        return &rd;
+    } else {
+        return nullptr;
+    }
+}
+
 // The leaf kernel of M (MollerTrumbore or Watertight) on slots [first, first + count).
 template <class M>
 std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
@@ -102,7 +117,7 @@ std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
                                     std::uint32_t count,
                                     Rayf& ray,
                                     const RayDataOf<M>& rd) {
-    if constexpr (std::is_same_v<M, Watertight<float>>) {
+    if constexpr (is_watertight<M>) {
         return soa_closest_watertight(q, first, count, ray, rd);
     } else {
         return soa_closest_mt(q, first, count, ray);
@@ -115,7 +130,7 @@ std::optional<std::uint32_t> leaf_any(const TriangleSoA& q,
                                       std::uint32_t count,
                                       const Rayf& ray,
                                       const RayDataOf<M>& rd) {
-    if constexpr (std::is_same_v<M, Watertight<float>>) {
+    if constexpr (is_watertight<M>) {
         return soa_any_watertight(q, first, count, ray, rd);
     } else {
         return soa_any_mt(q, first, count, ray);
@@ -124,7 +139,8 @@ std::optional<std::uint32_t> leaf_any(const TriangleSoA& q,
 
 // Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray
 // set-up runs once per ray and set, before traversal. Sets with slot-ordered leaf data test whole
-// leaves (ids looked up only for the reported hit).
+// leaves (ids looked up only for the reported hit); on wide BVHs the leaf kernel is inlined into
+// traversal (trace/wide_soa.h).
 struct ClosestQuery {
     std::span<const Rayf> rays;
     std::span<Hit> hits;
@@ -139,6 +155,14 @@ struct ClosestQuery {
         const RayDataOf<M> rd = precompute_ray<M>(ray);
         if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
+                if constexpr (is_wide_bvh<A>) {
+                    const auto h = wide_soa_trace<false, IsRobust, is_watertight<M>>(
+                        acc, s.soa, ray, ray_data_ptr<M>(rd), stats);
+                    if (h) {
+                        hits[i] = {h->hit.t, h->hit.u, h->hit.v, s.soa.id(h->slot)};
+                    }
+                    return;
+                }
                 SlotHit best{};
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
                     const auto h = leaf_closest<M>(s.soa, first, count, rr, rd);
@@ -207,6 +231,14 @@ struct AnyHitQuery {
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
         if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
+                if constexpr (is_wide_bvh<A>) {
+                    const auto h = wide_soa_trace<true, IsRobust, is_watertight<M>>(
+                        acc, s.soa, rays[i], ray_data_ptr<M>(rd), stats);
+                    if (h) {
+                        blocker[i] = s.soa.id(*h);
+                    }
+                    return;
+                }
                 std::uint32_t slot = 0;
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
                     const auto h = leaf_any<M>(s.soa, first, count, rr, rd);

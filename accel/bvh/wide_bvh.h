@@ -15,6 +15,7 @@
 #include "base/simd.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,17 +79,28 @@ struct WideBvh {
 
     friend bool operator==(const WideBvh&, const WideBvh&) = default;
 
-private:
-    template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
-    bool dispatch(R& ray, F& hit_fn, S& stats) const {
+    /// What traversal reads, after the checks every query starts with: nullopt for an invalid
+    /// ray (not counted) or an empty structure (counted as a ray).
+    template <StatsSink S>
+    std::optional<WideView<N>> start(const Rayf& ray, S& stats) const {
         if (!is_valid(ray)) {
-            return false;
+            return std::nullopt;
         }
         stats.count_ray();
         if (nodes.empty()) {
+            return std::nullopt;
+        }
+        return WideView<N>{nodes.data(), prim_ids.data()};
+    }
+
+private:
+    template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
+    bool dispatch(R& ray, F& hit_fn, S& stats) const {
+        const auto started = start(ray, stats);
+        if (!started) {
             return false;
         }
-        const WideView<N> view{nodes.data(), prim_ids.data()};
+        const WideView<N>& view = *started;
         switch (simd_level()) {
         case SimdLevel::avx512:
             return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,

@@ -1,0 +1,55 @@
+#pragma once
+// The TriangleSoA leaf kernels (trace/triangle_soa_kernels.inc) compiled once per SIMD level of
+// base/simd.h: namespaces simd_sse2, simd_avx2 and simd_avx512, each in its own target region with
+// that level's lanes (base/simd_lanes.h). trace/triangle_soa.cpp picks one per call by
+// simd_level(); trace/wide_soa.h inlines them into the wide BVH traversal of the same level.
+
+#include "base/simd_lanes.h"
+#include "trace/triangle_soa.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace rtlab {
+
+/// One chunk of at most 8 slots: `cand` has a bit per lane that may hit (it passed every test
+/// against the window the chunk started with, which only shrinks); `fallback` marks watertight
+/// lanes with an exact zero edge function, which the scalar method decides. Per lane: t, u, v,
+/// and for watertight the scaled distance ts and |det| of its window test.
+struct SoaChunk {
+    unsigned cand = 0;
+    unsigned fallback = 0;
+    alignas(32) float t[8];
+    alignas(32) float u[8];
+    alignas(32) float v[8];
+    alignas(32) float ts[8];
+    alignas(32) float ad[8];
+};
+
+/// Bits of the lanes below n (n may exceed the lane count).
+inline unsigned soa_first_lanes(std::uint32_t n) {
+    return n >= 32 ? ~0u : (1u << n) - 1u;
+}
+
+/// Bits of the lanes of a chunk starting at slot s0 whose slots lie in [first, end).
+inline unsigned soa_lanes_in(std::uint32_t s0, std::uint32_t first, std::uint32_t end) {
+    return soa_first_lanes(end - s0) & ~soa_first_lanes(first > s0 ? first - s0 : 0);
+}
+
+}  // namespace rtlab
+
+namespace rtlab::simd_sse2 {
+#include "trace/triangle_soa_kernels.inc"
+}  // namespace rtlab::simd_sse2
+
+RTLAB_SIMD_BEGIN_AVX2
+namespace rtlab::simd_avx2 {
+#include "trace/triangle_soa_kernels.inc"
+}  // namespace rtlab::simd_avx2
+RTLAB_SIMD_END
+
+RTLAB_SIMD_BEGIN_AVX512
+namespace rtlab::simd_avx512 {
+#include "trace/triangle_soa_kernels.inc"
+}  // namespace rtlab::simd_avx512
+RTLAB_SIMD_END
