@@ -216,6 +216,17 @@ AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
     return p;
 }
 
+// The wide layouts' source trees default to larger leaves: their SIMD leaf kernel tests up to 8
+// triangles for about the price of one, and sweeps/bvh8-leaves.json measured max_leaf 8 with
+// ct 4 1.2-1.3x faster than 4 and 1 on the tessellated flake (analytic spheres: unchanged), with
+// leaf and node memory less than half (docs/results.md, issue 12).
+ParamSpec with_default(ParamSpec p, double value) {
+    p.default_value = value;
+    return p;
+}
+const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
+const ParamSpec wide_ct = with_default(bvh_ct, 4);
+
 /// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
 AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
@@ -256,11 +267,11 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
      &wide_row<4>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
      &wide_row<8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
