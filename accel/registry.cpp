@@ -250,7 +250,8 @@ const AccelEntry registry_rows[] = {
      {max_leaf, bins, bvh_ct, bvh_ci, threads},
      &threaded_row<build_bvh_binned_sah, bvh_config>},
     {"bvh:pbinned",
-     "binary BVH, binned SAH on all axes in one pass, parallel with TBB, deterministic",
+     "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n primitives), "
+     "parallel with TBB, deterministic",
      {max_leaf, bins, bvh_ct, bvh_ci, threads},
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",

@@ -2,9 +2,12 @@
 // with the parallel scheme of its section 4 and of Embree's builders): each node bins all three
 // axes in one pass over 32-byte primitive references (box + id, moved by the partition, so no id
 // indirection), takes the children's boxes from the bins and their centroid bounds from the
-// partition. Nodes of at least `parallel_min` primitives bin and partition data-parallel in fixed
-// blocks; subtrees of at least `task_min` primitives are tasks writing their own node chunks,
-// stitched at the end (as madmann91/bvh's mini-tree builder stitches its mini-trees).
+// partition. A node of n primitives uses min(bins, 4 + n/20) bins per axis (Embree's BinMapping
+// rule): small nodes, the most numerous, reset and sweep few bins. Nodes of at least
+// `parallel_min` primitives bin data-parallel in fixed blocks and partition into the other of two
+// buffers (ping-pong; offsets from each block's bins, so one pass); subtrees of at least
+// `task_min` primitives are tasks writing their own node chunks, stitched at the end (as
+// madmann91/bvh's mini-tree builder stitches its mini-trees).
 // Deterministic: every decision depends on the node's primitives only (box unions and counts are
 // exact under any grouping, the block partition is stable), so any thread count gives the same
 // tree. Cost: O(N log N) work, O(N) memory besides the tree.
@@ -79,9 +82,8 @@ struct V4 {
     /// x*y + y*z + z*x of lanes 0..2, summed in that order.
     float cross_sum() const {
         const __m128 p = _mm_mul_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 0, 2, 1)));
-        alignas(16) float o[4];
-        _mm_store_ps(o, p);
-        return o[0] + o[1] + o[2];
+        const __m128 s = _mm_add_ss(p, _mm_shuffle_ps(p, p, _MM_SHUFFLE(1, 1, 1, 1)));
+        return _mm_cvtss_f32(_mm_add_ss(s, _mm_movehl_ps(p, p)));
     }
 #else
     float v[4];
@@ -185,9 +187,16 @@ struct Box {
 /// A node's primitive range with its box and the bounds of its doubled centroids.
 struct Range {
     std::uint32_t b = 0, e = 0;
+    bool alt = false;  ///< its references are in the builder's scratch_, else in refs_
     Box box;
     Box cent;  ///< bounds of lo + hi over the range
     std::uint32_t size() const { return e - b; }
+    /// Block k of the fixed blocks the parallel passes cut the range into.
+    std::pair<std::uint32_t, std::uint32_t> block_span(std::size_t k) const {
+        return {static_cast<std::uint32_t>(b + k * block),
+                static_cast<std::uint32_t>(std::min<std::size_t>(e, b + (k + 1) * block))};
+    }
+    std::size_t blocks() const { return (size() + block - 1) / block; }
 };
 
 /// Bin of doubled centroid c on one axis: the same float steps as V4::bins, one lane.
@@ -325,6 +334,9 @@ private:
                  tbb::task_group& tasks) {
         Decision d = decide(r, depth);
         if (d.leaf) {
+            if (r.alt) {
+                std::copy(scratch_.begin() + r.b, scratch_.begin() + r.e, refs_.begin() + r.b);
+            }
             ch.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
             return;
         }
@@ -359,7 +371,7 @@ private:
             return d;
         }
         const bool balance = bvh_detail::TopDown::must_balance(depth, n);
-        const std::uint32_t nb = config_.bin_count;
+        const std::uint32_t nb = std::min(config_.bin_count, 4 + n / 20);
         float cl[4], ch[4];
         r.cent.lo.store(cl);
         r.cent.hi.store(ch);
@@ -372,11 +384,14 @@ private:
             }
             // Small nodes reuse this thread's bins: nothing between binning and partitioning
             // them can run another task on this thread. Big nodes bin in parallel (their
-            // thread may run other tasks while it waits), so they own their bins.
+            // thread may run other tasks while it waits), so they own their bins, and keep each
+            // block's bins for the partition's offsets.
             thread_local Bins small(0);
             Bins big(0);
+            std::vector<Bins> per_block;
             Bins& bins = r.size() < parallel_min ? small : big;
-            bin(r, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins);
+            bin(r, nb, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins,
+                per_block);
             float best = std::numeric_limits<float>::infinity();
             std::uint32_t best_axis = 0, best_bin = 0;
             sweep(bins, ch, cl, best, best_axis, best_bin);
@@ -390,7 +405,8 @@ private:
                 }
                 d.leaf = false;
                 d.axis = best_axis;
-                partition(r, bins, best_axis, best_bin, cl[best_axis], scale[best_axis], d);
+                partition(r, bins, per_block, best_axis, best_bin, cl[best_axis], scale[best_axis],
+                          d);
                 return d;
             }
         }
@@ -401,14 +417,24 @@ private:
         return d;
     }
 
-    /// All three axes binned over r into out (in parallel blocks when r is big).
-    void bin(const Range& r, V4 lo, V4 scale, Bins& out) const {
-        const std::uint32_t nb = config_.bin_count;
+    /// The buffer holding r's references.
+    PrimRef* refs_of(const Range& r) { return r.alt ? scratch_.data() : refs_.data(); }
+    const PrimRef* refs_of(const Range& r) const { return r.alt ? scratch_.data() : refs_.data(); }
+
+    /// All three axes binned over r into out; a big r bins its blocks in parallel into
+    /// per_block, merged into out in block order.
+    void bin(const Range& r,
+             std::uint32_t nb,
+             V4 lo,
+             V4 scale,
+             Bins& out,
+             std::vector<Bins>& per_block) const {
+        const PrimRef* refs = refs_of(r);
         const auto run = [&](std::size_t b, std::size_t e, Bins& acc) {
             const float top = static_cast<float>(nb - 1);
             alignas(16) int k[4];
             for (std::size_t i = b; i < e; ++i) {
-                const PrimRef& p = refs_[i];
+                const PrimRef& p = refs[i];
                 ((p.twice_center() - lo) * scale).bins(top, k);
                 for (std::uint32_t a = 0; a < 3; ++a) {
                     const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
@@ -417,25 +443,26 @@ private:
                 }
             }
         };
+        out.reset(nb);
         if (r.size() < parallel_min) {
-            out.reset(nb);
             run(r.b, r.e, out);
             return;
         }
-        out = tbb::parallel_reduce(
-            tbb::blocked_range<std::size_t>(r.b, r.e, block), Bins(nb),
-            [&](const tbb::blocked_range<std::size_t>& br, Bins acc) {
-                run(br.begin(), br.end(), acc);
-                return acc;
-            },
-            [](Bins a, const Bins& b) {
-                a.merge(b);
-                return a;
-            });
+        per_block.assign(r.blocks(), Bins(nb));
+        tbb::parallel_for(std::size_t{0}, per_block.size(), [&](std::size_t k) {
+            const auto [b, e] = r.block_span(k);
+            run(b, e, per_block[k]);
+        });
+        for (const Bins& b : per_block) {
+            out.merge(b);
+        }
     }
 
     /// The cheapest split over every axis with spread and every bin boundary (unnormalised cost
-    /// sum A * n with half areas; ties keep the first axis, then the first bin).
+    /// sum A * n with half areas; ties keep the first axis, then the first bin). Only the
+    /// boundaries right after a non-empty bin are tested: the boundaries up to the next non-empty
+    /// bin split the same primitives at the same cost, and the first of them is that one, so the
+    /// answer is the one of testing every boundary.
     void sweep(const Bins& bins,
                const float* ch,
                const float* cl,
@@ -443,8 +470,10 @@ private:
                std::uint32_t& best_axis,
                std::uint32_t& best_bin) const {
         const std::uint32_t nb = bins.count;
+        thread_local std::vector<std::uint32_t> full;  // the non-empty bins of one axis
         thread_local std::vector<float> right_area;
         thread_local std::vector<std::uint32_t> right_count;
+        full.resize(nb);
         right_area.resize(nb);
         right_count.resize(nb);
         for (std::uint32_t a = 0; a < 3; ++a) {
@@ -452,46 +481,41 @@ private:
                 continue;
             }
             const std::size_t base = a * nb;
-            // Empty bins leave the sums as they were, so their areas are not recomputed.
+            std::uint32_t m = 0;
+            for (std::uint32_t k = 0; k < nb; ++k) {
+                full[m] = k;
+                m += bins.prims[base + k] != 0 ? 1 : 0;
+            }
             Box acc;
             std::uint32_t cnt = 0;
-            float area = 0.0f;
-            for (std::uint32_t k = nb - 1; k > 0; --k) {
-                if (bins.prims[base + k] != 0) {
-                    acc.extend(bins.box[base + k]);
-                    cnt += bins.prims[base + k];
-                    area = acc.half_area_filled();
-                }
-                right_area[k - 1] = area;
-                right_count[k - 1] = cnt;
+            for (std::uint32_t p = m; p-- > 1;) {
+                acc.extend(bins.box[base + full[p]]);
+                cnt += bins.prims[base + full[p]];
+                right_area[p - 1] = acc.half_area_filled();
+                right_count[p - 1] = cnt;
             }
             acc = Box{};
             cnt = 0;
-            area = 0.0f;
-            for (std::uint32_t k = 0; k + 1 < nb; ++k) {
-                if (bins.prims[base + k] != 0) {
-                    acc.extend(bins.box[base + k]);
-                    cnt += bins.prims[base + k];
-                    area = acc.half_area_filled();
-                }
-                if (cnt == 0 || right_count[k] == 0) {
-                    continue;
-                }
-                const float cost = area * static_cast<float>(cnt) +
-                                   right_area[k] * static_cast<float>(right_count[k]);
+            for (std::uint32_t p = 0; p + 1 < m; ++p) {
+                acc.extend(bins.box[base + full[p]]);
+                cnt += bins.prims[base + full[p]];
+                const float cost = acc.half_area_filled() * static_cast<float>(cnt) +
+                                   right_area[p] * static_cast<float>(right_count[p]);
                 if (cost < best) {
                     best = cost;
                     best_axis = a;
-                    best_bin = k;
+                    best_bin = full[p];
                 }
             }
         }
     }
 
-    /// Moves the references of bins [0, split] on `axis` to the front of r; fills d's children
-    /// (boxes from the bins, centroid bounds from the pass).
+    /// Moves the references of bins [0, split] on `axis` to the front of r: in place for a
+    /// small r, into the other buffer for a big one; fills d's children (boxes from the bins,
+    /// centroid bounds from the pass).
     void partition(const Range& r,
                    const Bins& bins,
+                   const std::vector<Bins>& per_block,
                    std::uint32_t axis,
                    std::uint32_t split,
                    float lo,
@@ -510,21 +534,23 @@ private:
         const std::uint32_t mid = r.b + left_count;
         if (r.size() < parallel_min) {
             // In place: swap misplaced pairs from both ends.
+            PrimRef* refs = refs_of(r);
             std::uint32_t i = r.b, j = r.e;
             for (;;) {
-                while (i < j && goes_left(refs_[i])) {
-                    d.left.cent.extend(refs_[i++].twice_center());
+                while (i < j && goes_left(refs[i])) {
+                    d.left.cent.extend(refs[i++].twice_center());
                 }
-                while (i < j && !goes_left(refs_[j - 1])) {
-                    d.right.cent.extend(refs_[--j].twice_center());
+                while (i < j && !goes_left(refs[j - 1])) {
+                    d.right.cent.extend(refs[--j].twice_center());
                 }
                 if (i >= j) {
                     break;
                 }
-                std::swap(refs_[i], refs_[j - 1]);
+                std::swap(refs[i], refs[j - 1]);
             }
+            d.left.alt = d.right.alt = r.alt;
         } else {
-            parallel_partition(r, goes_left, mid, d);
+            parallel_partition(r, per_block, axis * nb, split, goes_left, mid, d);
         }
         d.left.b = r.b;
         d.left.e = mid;
@@ -532,57 +558,58 @@ private:
         d.right.e = r.e;
     }
 
-    /// Stable partition of big ranges through scratch_: per-block counts, prefix sums, scatter,
-    /// copy back. Every step is exact whatever the threads, so the order is deterministic.
+    /// Stable partition of a big range into the other buffer (ping-pong: no copy back): each
+    /// block's offsets from its own bins' counts (bins row..row+split), one scatter pass. Every
+    /// step is exact whatever the threads, so the order is deterministic.
     template <class Pred>
-    void parallel_partition(const Range& r, const Pred& goes_left, std::uint32_t mid, Decision& d) {
-        const std::size_t blocks = (r.size() + block - 1) / block;
+    void parallel_partition(const Range& r,
+                            const std::vector<Bins>& per_block,
+                            std::size_t row,
+                            std::uint32_t split,
+                            const Pred& goes_left,
+                            std::uint32_t mid,
+                            Decision& d) {
+        const std::size_t blocks = per_block.size();
         std::vector<std::uint32_t> lefts(blocks + 1, 0), rights(blocks + 1, 0);
-        std::vector<Box> lc(blocks), rc(blocks);
-        const auto span_of = [&](std::size_t k) {
-            return std::pair<std::size_t, std::size_t>{
-                r.b + k * block, std::min<std::size_t>(r.e, r.b + (k + 1) * block)};
-        };
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            const auto [b, e] = span_of(k);
+        for (std::size_t k = 0; k < blocks; ++k) {
+            const auto [b, e] = r.block_span(k);
             std::uint32_t c = 0;
+            for (std::uint32_t j = 0; j <= split; ++j) {
+                c += per_block[k].prims[row + j];
+            }
+            lefts[k + 1] = lefts[k] + c;
+            rights[k + 1] = rights[k] + (e - b - c);
+        }
+        const PrimRef* src = refs_of(r);
+        PrimRef* dst = r.alt ? refs_.data() : scratch_.data();
+        std::vector<Box> lc(blocks), rc(blocks);
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            const auto [b, e] = r.block_span(k);
+            std::size_t l = r.b + lefts[k], rr = mid + rights[k];
             for (std::size_t i = b; i < e; ++i) {
-                if (goes_left(refs_[i])) {
-                    ++c;
-                    lc[k].extend(refs_[i].twice_center());
+                const PrimRef& p = src[i];
+                if (goes_left(p)) {
+                    dst[l++] = p;
+                    lc[k].extend(p.twice_center());
                 } else {
-                    rc[k].extend(refs_[i].twice_center());
+                    dst[rr++] = p;
+                    rc[k].extend(p.twice_center());
                 }
             }
-            lefts[k + 1] = c;
-            rights[k + 1] = static_cast<std::uint32_t>(e - b) - c;
         });
         for (std::size_t k = 0; k < blocks; ++k) {
-            lefts[k + 1] += lefts[k];
-            rights[k + 1] += rights[k];
             d.left.cent.extend(lc[k]);
             d.right.cent.extend(rc[k]);
         }
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            const auto [b, e] = span_of(k);
-            std::size_t l = r.b + lefts[k], rr = mid + rights[k];
-            for (std::size_t i = b; i < e; ++i) {
-                scratch_[goes_left(refs_[i]) ? l++ : rr++] = refs_[i];
-            }
-        });
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            const auto [b, e] = span_of(k);
-            std::copy(scratch_.begin() + static_cast<std::ptrdiff_t>(b),
-                      scratch_.begin() + static_cast<std::ptrdiff_t>(e),
-                      refs_.begin() + static_cast<std::ptrdiff_t>(b));
-        });
+        d.left.alt = d.right.alt = !r.alt;
     }
 
     /// Object median of r on its largest centroid axis (ties by id), children measured by a pass.
     void median(const Range& r, Decision& d) {
         const std::uint32_t axis = static_cast<std::uint32_t>(r.cent.bounds().largest_axis());
         const std::uint32_t mid = r.b + r.size() / 2;
-        std::nth_element(refs_.begin() + r.b, refs_.begin() + mid, refs_.begin() + r.e,
+        PrimRef* refs = refs_of(r);
+        std::nth_element(refs + r.b, refs + mid, refs + r.e,
                          [axis](const PrimRef& x, const PrimRef& y) {
                              const float cx = x.lo[axis] + x.hi[axis];
                              const float cy = y.lo[axis] + y.hi[axis];
@@ -595,9 +622,10 @@ private:
         d.right.b = mid;
         d.right.e = r.e;
         for (Range* c : {&d.left, &d.right}) {
+            c->alt = r.alt;
             for (std::uint32_t i = c->b; i < c->e; ++i) {
-                c->box.extend(refs_[i]);
-                c->cent.extend(refs_[i].twice_center());
+                c->box.extend(refs[i]);
+                c->cent.extend(refs[i].twice_center());
             }
         }
     }
