@@ -298,12 +298,13 @@ TEST_CASE("parallel binned SAH builds the same tree for 1, 2 and 4 threads", "[a
 }
 
 TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[accel][bvh]") {
-    // 20000 primitives: nodes above TopDown::parallel_min (4096) build their children as tasks.
+    // 70000 primitives: nodes above TopDown::parallel_min (4096) build their children as tasks,
+    // and box unions over 65536 or more primitives are reduced in parallel blocks.
     const std::string row =
         GENERATE(as<std::string>{}, "bvh:median", "bvh:binned", "bvh:sweep", "bvh:lbvh");
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
     CAPTURE(row, static_cast<int>(kind));
-    const test::Soup soup = test::random_soup(kind, 31, 20000);
+    const test::Soup soup = test::random_soup(kind, 31, 70000);
     const Bvh one = build_with(soup.boxes, row, 4, ",threads=1");
     check_layout(one, soup.boxes);
     for (const int threads : {2, 4, 0}) {

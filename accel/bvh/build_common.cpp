@@ -5,8 +5,43 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 namespace rtlab::bvh_detail {
+
+namespace {
+
+/// Ranges at least this long are reduced in parallel blocks of `reduce_block`: the top nodes of
+/// an unbalanced tree (a floor split off a mesh) would otherwise run one thread for a whole level.
+constexpr std::uint32_t reduce_min = 1u << 16;
+constexpr std::uint32_t reduce_block = 1u << 14;
+
+/// Union of box_of(i) for i in [b, e); exact under any grouping, so the same for any threads.
+template <class BoxOf>
+Bounds3f union_over(std::uint32_t b, std::uint32_t e, const BoxOf& box_of) {
+    const auto serial = [&](std::uint32_t lo, std::uint32_t hi, Bounds3f acc) {
+        for (std::uint32_t i = lo; i < hi; ++i) {
+            acc.extend(box_of(i));
+        }
+        return acc;
+    };
+    if (e - b < reduce_min) {
+        return serial(b, e, Bounds3f{});
+    }
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::uint32_t>(b, e, reduce_block), Bounds3f{},
+        [&](const tbb::blocked_range<std::uint32_t>& r, Bounds3f acc) {
+            return serial(r.begin(), r.end(), acc);
+        },
+        [](Bounds3f x, const Bounds3f& y) {
+            x.extend(y);
+            return x;
+        });
+}
+
+}  // namespace
 
 std::uint32_t ceil_log2(std::uint64_t n) {
     return n <= 1 ? 0u : static_cast<std::uint32_t>(std::bit_width(n - 1));
@@ -22,29 +57,29 @@ Bvh::Config clamped(const Bvh::Config& cfg) {
 
 TopDown::TopDown(const BuildInput& in, const Bvh::Config& cfg)
     : boxes(in.bounds), centers(in.bounds.size()), config(cfg) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), reduce_block),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                              centers[i] = boxes[i].center();
+                          }
+                      });
     ids.reserve(boxes.size());
     for (std::uint32_t i = 0; i < boxes.size(); ++i) {
         if (is_usable_box(boxes[i])) {
             ids.push_back(i);
-            centers[i] = boxes[i].center();
         }
     }
 }
 
 Bounds3f TopDown::range_bounds(std::uint32_t b, std::uint32_t e) const {
-    Bounds3f r;
-    for (std::uint32_t i = b; i < e; ++i) {
-        r.extend(boxes[ids[i]]);
-    }
-    return r;
+    return union_over(b, e, [&](std::uint32_t i) { return boxes[ids[i]]; });
 }
 
 Bounds3f TopDown::centroid_bounds(std::uint32_t b, std::uint32_t e) const {
-    Bounds3f r;
-    for (std::uint32_t i = b; i < e; ++i) {
-        r.extend(centers[ids[i]]);
-    }
-    return r;
+    return union_over(b, e, [&](std::uint32_t i) {
+        const Vec3f& c = centers[ids[i]];
+        return Bounds3f{c, c};
+    });
 }
 
 Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {

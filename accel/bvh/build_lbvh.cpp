@@ -65,10 +65,10 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
         std::sort(keys.begin(), keys.end());
     }
     std::vector<std::uint32_t> codes(keys.size());
-    for (std::size_t i = 0; i < keys.size(); ++i) {
+    tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
         codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);
         td.ids[i] = static_cast<std::uint32_t>(keys[i] & 0xFFFFFFFFu);
-    }
+    });
 
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
                      bool balance) -> std::optional<bvh_detail::Split> {
