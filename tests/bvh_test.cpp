@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,42 @@ TEST_CASE("LBVH codes: bit interleaving and duplicate codes", "[accel][bvh]") {
     }
     // The root splits on the top code bit, which is x's highest bit.
     CHECK(bvh.nodes[0].axis() == 0);
+}
+
+TEST_CASE("LBVH orders primitives by Morton code, ties by id, across radix blocks",
+          "[accel][bvh]") {
+    // 70,000 points on the 4x4x4 lattice in random order: with morton_bits=2 each coordinate's
+    // cell is the coordinate itself, so the expected order is (code, id) sorted here with
+    // std::sort. More keys than one radix-sort block (65,536) and long runs of equal codes.
+    std::mt19937 rng(5);
+    std::vector<Bounds3f> boxes;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> expect;
+    for (std::uint32_t i = 0; i < 70000; ++i) {
+        // The first 64 cover the lattice, so the centroid bounds are [0, 3] on every axis.
+        const std::uint32_t cell = i < 64 ? i : static_cast<std::uint32_t>(rng() % 64);
+        const std::uint32_t x = cell % 4, y = cell / 4 % 4, z = cell / 16;
+        std::uint32_t code = 0;
+        for (std::uint32_t bit = 0; bit < 2; ++bit) {
+            code |= ((x >> bit & 1u) << (3 * bit + 2)) | ((y >> bit & 1u) << (3 * bit + 1)) |
+                    ((z >> bit & 1u) << (3 * bit));
+        }
+        boxes.emplace_back(
+            Vec3f{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+        expect.emplace_back(code, i);
+    }
+    std::sort(expect.begin(), expect.end());
+    for (const int threads : {1, 2}) {
+        CAPTURE(threads);
+        const Bvh bvh =
+            build_with(boxes, "bvh:lbvh", 4, ",morton_bits=2,threads=" + std::to_string(threads));
+        check_layout(bvh, boxes);
+        REQUIRE(bvh.prim_ids.size() == expect.size());
+        std::size_t out_of_order = 0;
+        for (std::size_t i = 0; i < expect.size(); ++i) {
+            out_of_order += bvh.prim_ids[i] == expect[i].second ? 0 : 1;
+        }
+        CHECK(out_of_order == 0);
+    }
 }
 
 TEST_CASE("depth stays within 64 on exponentially spaced primitives", "[accel][bvh]") {

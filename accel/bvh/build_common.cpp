@@ -102,9 +102,16 @@ void TopDown::splice(BvhNodes& nodes, std::uint32_t slot, const BvhNodes& sub) {
         return node;
     };
     nodes[slot] = moved(sub[0]);
-    for (std::size_t k = 1; k < sub.size(); ++k) {
-        nodes.push_back(moved(sub[k]));
-    }
+    // In parallel blocks: the root's splice copies the whole tree, which would otherwise run on
+    // one thread.
+    const std::size_t base = nodes.size() - 1;
+    nodes.resize(base + sub.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(1, sub.size(), reduce_block),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                              nodes[base + k] = moved(sub[k]);
+                          }
+                      });
 }
 
 bool TopDown::must_balance(std::uint32_t depth, std::uint32_t n) {

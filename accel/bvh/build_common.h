@@ -112,6 +112,8 @@ private:
         const Bounds3f left_box = range_bounds(b, s->mid), right_box = range_bounds(s->mid, e);
         if (parallel && n >= parallel_min) {
             BvhNodes l(1), r(1);
+            l.reserve(2 * (s->mid - b) - 1);  // a subtree of k primitives has <= 2k - 1 nodes
+            r.reserve(2 * (e - s->mid) - 1);
             tbb::parallel_invoke(
                 [&] { build_node(l, split, 0, b, s->mid, depth + 1, left_box, true); },
                 [&] { build_node(r, split, 0, s->mid, e, depth + 1, right_box, true); });
