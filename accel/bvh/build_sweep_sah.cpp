@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 #include <vector>
 
 namespace rtlab {
@@ -22,14 +22,15 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     // order[a] holds the ids sorted by centre on axis a; every node's range [b, e) holds the same
     // id set in all three arrays.
     std::array<std::vector<std::uint32_t>, 3> order;
-    const auto sort_axis = [&](std::uint32_t a) {
+    // One axis after the other, each sort itself parallel: three sorts side by side leave one of
+    // two threads idle for the third. The order is a strict total order, so the result is unique.
+    for (std::uint32_t a = 0; a < 3; ++a) {
         order[a] = td.ids;
-        std::sort(order[a].begin(), order[a].end(), [&](std::uint32_t x, std::uint32_t y) {
+        tbb::parallel_sort(order[a].begin(), order[a].end(), [&](std::uint32_t x, std::uint32_t y) {
             const float cx = td.centers[x][a], cy = td.centers[y][a];
             return cx < cy || (cx == cy && x < y);
         });
-    };
-    tbb::parallel_invoke([&] { sort_axis(0); }, [&] { sort_axis(1); }, [&] { sort_axis(2); });
+    }
     // Scratch indexed by slot or id, so concurrent subtrees (disjoint ranges) never share it.
     std::vector<float> right_area(n_all);
     std::vector<char> goes_left(td.boxes.size(), 0);
