@@ -199,14 +199,6 @@ struct Range {
     std::size_t blocks() const { return (size() + block - 1) / block; }
 };
 
-/// Bin of doubled centroid c on one axis: the same float steps as V4::bins, one lane.
-std::uint32_t bin_of(float c, float lo, float scale, std::uint32_t bins) {
-    const float f = (c - lo) * scale;
-    const float top = static_cast<float>(bins - 1);
-    const float g = f > 0.0f ? f : 0.0f;  // NaN (0 * inf) -> 0, as _mm_max_ps(f, 0)
-    return static_cast<std::uint32_t>(g < top ? g : top);
-}
-
 /// Bin boxes and counts of all three axes.
 struct Bins {
     std::uint32_t count = 0;
@@ -528,8 +520,12 @@ private:
             side.extend(bins.box[axis * nb + k]);
             left_count += k <= split ? bins.prims[axis * nb + k] : 0;
         }
+        // The bin of V4::bins is <= split, without its clamps and conversion: the bin is trunc
+        // of f = (c - lo) * scale clamped to [0, nb - 1] (NaN -> 0), and split < nb - 1, so it
+        // is <= split exactly when f < split + 1 or f is NaN.
+        const float limit = static_cast<float>(split + 1);
         const auto goes_left = [&](const PrimRef& p) {
-            return bin_of(p.lo[axis] + p.hi[axis], lo, scale, nb) <= split;
+            return !((p.lo[axis] + p.hi[axis] - lo) * scale >= limit);
         };
         const std::uint32_t mid = r.b + left_count;
         if (r.size() < parallel_min) {
