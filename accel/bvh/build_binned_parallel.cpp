@@ -212,6 +212,14 @@ struct Bins {
         box.assign(3 * std::size_t{n}, Box{});
         prims.assign(3 * std::size_t{n}, 0);
     }
+    /// Primitives in bins [0, split] of `axis`: those a split after bin `split` puts left.
+    std::uint32_t left_of(std::uint32_t axis, std::uint32_t split) const {
+        std::uint32_t c = 0;
+        for (std::uint32_t k = 0; k <= split; ++k) {
+            c += prims[axis * count + k];
+        }
+        return c;
+    }
     void merge(const Bins& o) {
         for (std::size_t i = 0; i < box.size(); ++i) {
             box[i].extend(o.box[i]);
@@ -514,11 +522,8 @@ private:
                    float scale,
                    Decision& d) {
         const std::uint32_t nb = bins.count;
-        std::uint32_t left_count = 0;
         for (std::uint32_t k = 0; k < nb; ++k) {
-            Box& side = k <= split ? d.left.box : d.right.box;
-            side.extend(bins.box[axis * nb + k]);
-            left_count += k <= split ? bins.prims[axis * nb + k] : 0;
+            (k <= split ? d.left.box : d.right.box).extend(bins.box[axis * nb + k]);
         }
         // The bin of V4::bins is <= split, without its clamps and conversion: the bin is trunc
         // of f = (c - lo) * scale clamped to [0, nb - 1] (NaN -> 0), and split < nb - 1, so it
@@ -527,7 +532,7 @@ private:
         const auto goes_left = [&](const PrimRef& p) {
             return !((p.lo[axis] + p.hi[axis] - lo) * scale >= limit);
         };
-        const std::uint32_t mid = r.b + left_count;
+        const std::uint32_t mid = r.b + bins.left_of(axis, split);
         if (r.size() < parallel_min) {
             // In place: swap misplaced pairs from both ends.
             PrimRef* refs = refs_of(r);
@@ -546,7 +551,7 @@ private:
             }
             d.left.alt = d.right.alt = r.alt;
         } else {
-            parallel_partition(r, per_block, axis * nb, split, goes_left, mid, d);
+            parallel_partition(r, per_block, axis, split, goes_left, mid, d);
         }
         d.left.b = r.b;
         d.left.e = mid;
@@ -555,12 +560,12 @@ private:
     }
 
     /// Stable partition of a big range into the other buffer (ping-pong: no copy back): each
-    /// block's offsets from its own bins' counts (bins row..row+split), one scatter pass. Every
+    /// block's offsets from its own bins' counts, one scatter pass. Every
     /// step is exact whatever the threads, so the order is deterministic.
     template <class Pred>
     void parallel_partition(const Range& r,
                             const std::vector<Bins>& per_block,
-                            std::size_t row,
+                            std::uint32_t axis,
                             std::uint32_t split,
                             const Pred& goes_left,
                             std::uint32_t mid,
@@ -569,10 +574,7 @@ private:
         std::vector<std::uint32_t> lefts(blocks + 1, 0), rights(blocks + 1, 0);
         for (std::size_t k = 0; k < blocks; ++k) {
             const auto [b, e] = r.block_span(k);
-            std::uint32_t c = 0;
-            for (std::uint32_t j = 0; j <= split; ++j) {
-                c += per_block[k].prims[row + j];
-            }
+            const std::uint32_t c = per_block[k].left_of(axis, split);
             lefts[k + 1] = lefts[k] + c;
             rights[k + 1] = rights[k] + (e - b - c);
         }

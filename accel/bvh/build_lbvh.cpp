@@ -88,7 +88,8 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
         scale[a] = extent > 0.0f ? static_cast<float>(cells) / extent : 0.0f;
     }
     // Code layout: bit 3i + 2 is x, 3i + 1 is y, 3i is z of quantised bit i.
-    // Keys are unique (the id is in the low half), so any sort gives the same order.
+    // Keys are unique (the id is in the low half) and made in id order, so the stable radix sort
+    // on the code gives the order of sorting the whole keys.
     std::vector<std::uint64_t> keys(td.ids.size());
     tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
         const Vec3f& c = td.centers[td.ids[i]];
