@@ -199,12 +199,7 @@ private:
             return d;
         }
         const bool balance = bvh_detail::TopDown::must_balance(depth, n);
-        // A range of n <= Ct / Ci primitives that fits a leaf is one without binning: its leaf
-        // cost Ci * n * A is at most Ct * A, which no split's Ct * A + Ci * (sum A * n) undercuts
-        // (rounding is monotone, so this holds in floats too). Embree's builders likewise make
-        // every range of up to minLeafSize primitives a leaf.
-        if (n <= config_.max_leaf_size && !balance &&
-            config_.intersection_cost * static_cast<float>(n) <= config_.traversal_cost) {
+        if (!balance && bvh_detail::sah_leaf_anyway(config_, n)) {
             return d;
         }
         const std::uint32_t nb = std::min(config_.bin_count, 4 + n / 20);

@@ -50,6 +50,9 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
                      bool balance) -> std::optional<bvh_detail::Split> {
         const std::uint32_t n = e - b;
+        if (!balance && bvh_detail::sah_leaf_anyway(t.config, n)) {
+            return std::nullopt;
+        }
         if (balance || bins < 2) {
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }

@@ -28,6 +28,16 @@ std::uint32_t ceil_log2(std::uint64_t n);
 /// The configuration with every field clamped to its documented range.
 Bvh::Config clamped(const Bvh::Config& cfg);
 
+/// True when the SAH makes a range of n primitives a leaf whatever its splits: it fits one and
+/// Ci * n <= Ct, so its leaf cost Ci * n * A is at most Ct * A, which no split's
+/// Ct * A + Ci * (A_L n_L + A_R n_R) undercuts (for a finite area A; rounding is monotone, so in
+/// floats too). The SAH builders make such ranges leaves without binning or sweeping them, as
+/// Embree's builders make every range of up to minLeafSize primitives a leaf.
+inline bool sah_leaf_anyway(const Bvh::Config& cfg, std::uint32_t n) {
+    return n <= cfg.max_leaf_size &&
+           cfg.intersection_cost * static_cast<float>(n) <= cfg.traversal_cost;
+}
+
 /// A split of the id range [b, e): [b, mid) goes left, [mid, e) right (b < mid < e).
 struct Split {
     std::uint32_t mid;   ///< first slot of the right child

@@ -39,6 +39,9 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
                      bool balance) -> std::optional<bvh_detail::Split> {
         const std::uint32_t n = e - b;
+        if (!balance && bvh_detail::sah_leaf_anyway(t.config, n)) {
+            return std::nullopt;
+        }
         std::uint32_t best_axis = 0, best_mid = 0;
         const Bounds3f cb = t.centroid_bounds(b, e);
         // Coinciding centroids give no geometric order to sweep (only the id tie-break): such a
