@@ -226,6 +226,11 @@ ParamSpec with_default(ParamSpec p, double value) {
 }
 const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
 const ParamSpec wide_ct = with_default(bvh_ct, 4);
+// The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
+// on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10,
+// docs/results.md), so its source trees default to those.
+const ParamSpec pair_max_leaf = with_default(max_leaf, 16);
+const ParamSpec pair_ct = with_default(bvh_ct, 8);
 
 /// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
@@ -256,7 +261,7 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, leaves, max_leaf, bins, bvh_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, pair_max_leaf, bins, pair_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",

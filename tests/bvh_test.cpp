@@ -356,7 +356,8 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     CAPTURE(from, count);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);
     const Bvh source = build_with(soup.boxes, "bvh:" + from);
-    const AnyAccel any = build_accel("bvh:pair,from=" + from, soup.input());
+    // The source's parameters (build_with: max_leaf 4, Ct 1), not the pair row's defaults.
+    const AnyAccel any = build_accel("bvh:pair,from=" + from + ",max_leaf=4,ct=1", soup.input());
     const PairBvh& pair = std::get<PairBvh>(any);
     REQUIRE(pair.validate().empty());
     CHECK(pair == PairBvh::convert(source));
