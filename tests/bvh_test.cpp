@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtlab {
@@ -123,6 +124,34 @@ TEST_CASE("SAH builders beat the median and LBVH trees on the SAH metric", "[acc
     CHECK(sweep <= binned * 1.02);
     CHECK(binned < median);
     CHECK(sweep < lbvh);
+}
+
+TEST_CASE("SAH builders leave no range a leaf beats whatever its split", "[accel][bvh]") {
+    // A range of n <= max_leaf with Ci * n <= Ct costs at most Ct * A as a leaf, which no split's
+    // Ct * A + Ci * (A_L n_L + A_R n_R) undercuts: no inner node holds that few primitives.
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 2000);
+    const std::string row = GENERATE("bvh:pbinned", "bvh:binned", "bvh:sweep");
+    const auto [costs, most] = GENERATE(std::pair<std::string, std::uint32_t>{",ct=4", 4},
+                                        std::pair<std::string, std::uint32_t>{",ct=3", 3},
+                                        std::pair<std::string, std::uint32_t>{",ct=2,ci=0.5", 4});
+    CAPTURE(row, costs);
+    const Bvh bvh = build_with(soup.boxes, row, 8, costs);
+    check_layout(bvh, soup.boxes);
+    // Children are stored after their parent, so one backward pass sums subtree sizes.
+    std::vector<std::uint32_t> size(bvh.nodes.size());
+    std::size_t inner = 0, small_inner = 0;
+    for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
+        const BvhNode& n = bvh.nodes[i];
+        if (n.is_leaf()) {
+            size[i] = n.prim_count();
+            continue;
+        }
+        size[i] = size[n.first] + size[n.first + 1];
+        ++inner;
+        small_inner += size[i] <= most ? 1 : 0;
+    }
+    CHECK(inner > 100);
+    CHECK(small_inner == 0);
 }
 
 TEST_CASE("binned SAH handles one and two bins", "[accel][bvh]") {
