@@ -72,7 +72,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
             std::fill(bin_count.begin(), bin_count.end(), 0u);
             for (std::uint32_t i = b; i < e; ++i) {
                 const std::uint32_t id = t.ids[i];
-                const std::uint32_t k = bin_of(t.centers[id][axis], lo, scale, bins);
+                const std::uint32_t k = bin_of(t.center(id)[axis], lo, scale, bins);
                 bin_box[k].extend(t.boxes[id]);
                 ++bin_count[k];
             }
@@ -116,7 +116,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
         const float scale = static_cast<float>(bins) / (cb.hi[best_axis] - lo);
         const auto first_right =
             std::partition(t.ids.begin() + b, t.ids.begin() + e, [&](std::uint32_t id) {
-                return bin_of(t.centers[id][best_axis], lo, scale, bins) <= best_bin;
+                return bin_of(t.center(id)[best_axis], lo, scale, bins) <= best_bin;
             });
         const auto mid = static_cast<std::uint32_t>(first_right - t.ids.begin());
         return bvh_detail::Split{mid, best_axis};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -17,6 +18,34 @@ namespace {
 /// an unbalanced tree (a floor split off a mesh) would otherwise run one thread for a whole level.
 constexpr std::uint32_t reduce_min = 1u << 16;
 constexpr std::uint32_t reduce_block = 1u << 14;
+
+/// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
+template <class F>
+void for_blocks(std::size_t n, const F& f) {
+    const std::size_t blocks = (n + reduce_block - 1) / reduce_block;
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+        f(k, k * reduce_block, std::min(n, (k + 1) * reduce_block));
+    });
+}
+
+/// start[k] = how many i below block k's first index satisfy pred(i), for every block of
+/// for_blocks and one past the last (the total): where block k's selected indices go when they
+/// are packed in order. The same for any thread count.
+template <class Pred>
+std::vector<std::uint32_t> block_starts(std::size_t n, const Pred& pred) {
+    std::vector<std::uint32_t> start((n + reduce_block - 1) / reduce_block + 1, 0);
+    for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        std::uint32_t count = 0;
+        for (std::size_t i = lo; i < hi; ++i) {
+            count += pred(i) ? 1u : 0u;
+        }
+        start[k + 1] = count;
+    });
+    for (std::size_t k = 1; k < start.size(); ++k) {
+        start[k] += start[k - 1];
+    }
+    return start;
+}
 
 /// Union of box_of(i) for i in [b, e); exact under any grouping, so the same for any threads.
 template <class BoxOf>
@@ -56,19 +85,23 @@ Bvh::Config clamped(const Bvh::Config& cfg) {
 }
 
 TopDown::TopDown(const BuildInput& in, const Bvh::Config& cfg)
-    : boxes(in.bounds), centers(in.bounds.size()), config(cfg) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), reduce_block),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                              centers[i] = boxes[i].center();
-                          }
-                      });
-    ids.reserve(boxes.size());
-    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-        if (is_usable_box(boxes[i])) {
-            ids.push_back(i);
+    : boxes(in.bounds), centers(3 * in.bounds.size()), config(cfg) {
+    const std::size_t n = boxes.size();
+    const auto usable = [&](std::size_t i) { return is_usable_box(boxes[i]); };
+    const std::vector<std::uint32_t> start = block_starts(n, usable);
+    ids.resize(start.back());
+    for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        std::uint32_t next = start[k];
+        for (std::size_t i = lo; i < hi; ++i) {
+            const Vec3f c = boxes[i].center();
+            for (std::size_t a = 0; a < 3; ++a) {
+                centers[3 * i + a] = c[a];
+            }
+            if (usable(i)) {
+                ids[next++] = static_cast<std::uint32_t>(i);
+            }
         }
-    }
+    });
 }
 
 Bounds3f TopDown::range_bounds(std::uint32_t b, std::uint32_t e) const {
@@ -77,7 +110,7 @@ Bounds3f TopDown::range_bounds(std::uint32_t b, std::uint32_t e) const {
 
 Bounds3f TopDown::centroid_bounds(std::uint32_t b, std::uint32_t e) const {
     return union_over(b, e, [&](std::uint32_t i) {
-        const Vec3f& c = centers[ids[i]];
+        const Vec3f c = center(ids[i]);
         return Bounds3f{c, c};
     });
 }
@@ -87,31 +120,60 @@ Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
     const std::uint32_t mid = b + (e - b) / 2;
     std::nth_element(ids.begin() + b, ids.begin() + mid, ids.begin() + e,
                      [&](std::uint32_t x, std::uint32_t y) {
-                         const float cx = centers[x][axis], cy = centers[y][axis];
+                         const float cx = center(x)[axis], cy = center(y)[axis];
                          return cx < cy || (cx == cy && x < y);
                      });
     return {mid, axis};
 }
 
-void TopDown::splice(BvhNodes& nodes, std::uint32_t slot, const BvhNodes& sub) {
-    const auto shift = static_cast<std::uint32_t>(nodes.size()) - 1;
-    const auto moved = [shift](BvhNode node) {
-        if (!node.is_leaf()) {
-            node.first += shift;
+namespace {
+
+/// What marks a slot no node was written to: an inner node's count (0) with axis 3, which
+/// make_inner never writes.
+constexpr std::uint32_t unused_packed = 3;
+
+}  // namespace
+
+SlotArray::SlotArray(std::size_t n) : slots(LargePageAllocator<BvhNode>().allocate(n), n) {
+    BvhNode unused;
+    unused.packed = unused_packed;
+    for_blocks(n, [&](std::size_t, std::size_t lo, std::size_t hi) {
+        std::uninitialized_fill(slots.begin() + static_cast<std::ptrdiff_t>(lo),
+                                slots.begin() + static_cast<std::ptrdiff_t>(hi), unused);
+    });
+}
+
+SlotArray::~SlotArray() {
+    LargePageAllocator<BvhNode>().deallocate(slots.data(), slots.size());
+}
+
+BvhNodes SlotArray::compact() const {
+    // Every used slot's new index, then the renumbered copy: the order of the slots is kept, so
+    // depth-first pair order is too.
+    const auto used = [&](std::size_t i) { return slots[i].packed != unused_packed; };
+    const std::vector<std::uint32_t> start = block_starts(slots.size(), used);
+    ScratchVector<std::uint32_t> index(slots.size());
+    for_blocks(slots.size(), [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        std::uint32_t next = start[k];
+        for (std::size_t i = lo; i < hi; ++i) {
+            index[i] = next;
+            next += used(i) ? 1u : 0u;
         }
-        return node;
-    };
-    nodes[slot] = moved(sub[0]);
-    // In parallel blocks: the root's splice copies the whole tree, which would otherwise run on
-    // one thread.
-    const std::size_t base = nodes.size() - 1;
-    nodes.resize(base + sub.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(1, sub.size(), reduce_block),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                              nodes[base + k] = moved(sub[k]);
-                          }
-                      });
+    });
+    BvhNodes nodes(start.back());
+    for_blocks(slots.size(), [&](std::size_t, std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) {
+            BvhNode node = slots[i];
+            if (!used(i)) {
+                continue;
+            }
+            if (!node.is_leaf()) {
+                node.first = index[node.first];
+            }
+            nodes[index[i]] = node;
+        }
+    });
+    return nodes;
 }
 
 bool TopDown::must_balance(std::uint32_t depth, std::uint32_t n) {

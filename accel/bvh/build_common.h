@@ -4,6 +4,7 @@
 // object-median split and the depth guard that keeps every leaf at depth <= 64.
 
 #include "accel/bvh/bvh.h"
+#include "base/scratch_vector.h"
 #include "base/thread_arena.h"
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <span>
 #include <string>
 #include <tbb/parallel_invoke.h>
+#include <utility>
 #include <vector>
 
 namespace rtlab::bvh_detail {
@@ -44,6 +46,20 @@ struct Split {
     std::uint32_t axis;  ///< split axis stored in the node to order traversal
 };
 
+/// Node slots of a parallel top-down build, each subtree writing into its own region: all marked
+/// unused at first, in huge pages first touched in parallel (no serial zeroing of the array).
+class SlotArray {
+public:
+    explicit SlotArray(std::size_t n);
+    ~SlotArray();
+    SlotArray(const SlotArray&) = delete;
+    SlotArray& operator=(const SlotArray&) = delete;
+
+    std::span<BvhNode> slots;
+    /// The used slots in their order, child links renumbered (in parallel).
+    BvhNodes compact() const;
+};
+
 /// State of one top-down build: input boxes, centres, the working order of usable primitive ids
 /// (each node owns a contiguous range of it) and the output tree.
 class TopDown {
@@ -52,10 +68,15 @@ public:
     TopDown(const BuildInput& in, const Bvh::Config& cfg);
 
     std::span<const Bounds3f> boxes;  ///< input boxes by primitive id
-    std::vector<Vec3f> centers;       ///< box centres by primitive id
+    ScratchVector<float> centers;     ///< box centres by primitive id, x y z each (see center)
     std::vector<std::uint32_t> ids;   ///< usable primitive ids; node ranges index into it
     Bvh::Config config;               ///< clamped configuration
 
+    /// The centre of primitive id's box.
+    Vec3f center(std::uint32_t id) const {
+        const float* c = &centers[3 * std::size_t{id}];
+        return {c[0], c[1], c[2]};
+    }
     /// Union of the boxes of ids[b, e).
     Bounds3f range_bounds(std::uint32_t b, std::uint32_t e) const;
     /// Union of the centres of ids[b, e).
@@ -66,7 +87,7 @@ public:
     /// that every leaf below stays at depth <= 64: invariant depth + ceil_log2(n) <= 64.
     static bool must_balance(std::uint32_t depth, std::uint32_t n);
 
-    /// Runs the recursion, children of large ranges as parallel TBB tasks when `parallel`.
+    /// Runs the recursion, children of large ranges as parallel TBB tasks when `parallel`; once.
     /// split(*this, b, e, box, balance) returns a Split or nullopt for a leaf; when balance is true
     /// it must return a balanced split, and it must split whenever e - b > max_leaf_size. It may
     /// run concurrently on disjoint ranges, touching only ids[b, e) and scratch of its own range or
@@ -77,13 +98,19 @@ public:
         bvh.prim_count = static_cast<std::uint32_t>(boxes.size());
         bvh.unreferenced_count = bvh.prim_count - static_cast<std::uint32_t>(ids.size());
         bvh.config = config;
-        if (!ids.empty()) {
-            bvh.nodes.reserve(2 * ids.size() - 1);
+        const auto n = static_cast<std::uint32_t>(ids.size());
+        if (parallel && n >= parallel_min) {
+            // Every subtree writes into its own fixed region of one array (no copies of finished
+            // subtrees into their parents' arrays), then one pass closes the gaps.
+            const SlotArray slots(2 * n - 1);
+            build_slotted(slots.slots, split, 0, 1, 0, n, 0, range_bounds(0, n));
+            bvh.nodes = slots.compact();
+        } else if (n != 0) {
+            bvh.nodes.reserve(2 * n - 1);
             bvh.nodes.emplace_back();
-            const auto n = static_cast<std::uint32_t>(ids.size());
-            build_node(bvh.nodes, split, 0, 0, n, 0, range_bounds(0, n), parallel);
+            build_dense(bvh.nodes, split, 0, 0, n, 0, range_bounds(0, n));
         }
-        bvh.prim_ids = ids;
+        bvh.prim_ids = std::move(ids);  // the build is done with them
         return bvh;
     }
 
@@ -91,18 +118,13 @@ public:
     static constexpr std::uint32_t parallel_min = 4096;
 
 private:
-    // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
-    // depth-first pair order (both children, then the left subtree, then the right). In
-    // parallel, large children build into their own arrays, spliced in that same order.
+    // The split of ids[b, e) at `depth`, or nullopt for a leaf.
     template <class SplitFn>
-    void build_node(BvhNodes& nodes,
-                    SplitFn& split,
-                    std::uint32_t node,
-                    std::uint32_t b,
-                    std::uint32_t e,
-                    std::uint32_t depth,
-                    const Bounds3f& box,
-                    bool parallel) {
+    std::optional<Split> decide(SplitFn& split,
+                                std::uint32_t b,
+                                std::uint32_t e,
+                                std::uint32_t depth,
+                                const Bounds3f& box) {
         const std::uint32_t n = e - b;
         std::optional<Split> s;
         if (n > 1) {
@@ -111,8 +133,22 @@ private:
                 s = median_split(b, e);
             }
         }
+        return s;
+    }
+
+    // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
+    // depth-first pair order (both children, then the left subtree, then the right).
+    template <class SplitFn>
+    void build_dense(BvhNodes& nodes,
+                     SplitFn& split,
+                     std::uint32_t node,
+                     std::uint32_t b,
+                     std::uint32_t e,
+                     std::uint32_t depth,
+                     const Bounds3f& box) {
+        const std::optional<Split> s = decide(split, b, e, depth, box);
         if (!s) {
-            nodes[node] = BvhNode::make_leaf(box, b, n);
+            nodes[node] = BvhNode::make_leaf(box, b, e - b);
             return;
         }
         const auto left = static_cast<std::uint32_t>(nodes.size());
@@ -120,24 +156,45 @@ private:
         nodes.emplace_back();
         nodes[node] = BvhNode::make_inner(box, left, s->axis);
         const Bounds3f left_box = range_bounds(b, s->mid), right_box = range_bounds(s->mid, e);
-        if (parallel && n >= parallel_min) {
-            BvhNodes l(1), r(1);
-            l.reserve(2 * (s->mid - b) - 1);  // a subtree of k primitives has <= 2k - 1 nodes
-            r.reserve(2 * (e - s->mid) - 1);
-            tbb::parallel_invoke(
-                [&] { build_node(l, split, 0, b, s->mid, depth + 1, left_box, true); },
-                [&] { build_node(r, split, 0, s->mid, e, depth + 1, right_box, true); });
-            splice(nodes, left, l);
-            splice(nodes, left + 1, r);
-            return;
-        }
-        build_node(nodes, split, left, b, s->mid, depth + 1, left_box, parallel);
-        build_node(nodes, split, left + 1, s->mid, e, depth + 1, right_box, parallel);
+        build_dense(nodes, split, left, b, s->mid, depth + 1, left_box);
+        build_dense(nodes, split, left + 1, s->mid, e, depth + 1, right_box);
     }
 
-    /// Puts sub[0] at nodes[slot] and appends sub[1..]: index k >= 1 of sub moves to
-    /// nodes.size() + k - 1, so child links are shifted by that much.
-    static void splice(BvhNodes& nodes, std::uint32_t slot, const BvhNodes& sub);
+    // Fills slots[node] with the subtree of ids[b, e) and its descendants into the region
+    // slots[base, base + 2 (e - b) - 2) (a subtree of k primitives has at most 2k - 1 nodes): the
+    // children at base and base + 1, the left child's descendants from base + 2, the right
+    // child's from base + 2 (mid - b). Depth-first pair order with gaps, which
+    // SlotArray::compact closes; children of large ranges build as parallel tasks.
+    template <class SplitFn>
+    void build_slotted(std::span<BvhNode> slots,
+                       SplitFn& split,
+                       std::uint32_t node,
+                       std::uint32_t base,
+                       std::uint32_t b,
+                       std::uint32_t e,
+                       std::uint32_t depth,
+                       const Bounds3f& box) {
+        const std::optional<Split> s = decide(split, b, e, depth, box);
+        if (!s) {
+            slots[node] = BvhNode::make_leaf(box, b, e - b);
+            return;
+        }
+        slots[node] = BvhNode::make_inner(box, base, s->axis);
+        const std::uint32_t m = s->mid;
+        const Bounds3f left_box = range_bounds(b, m), right_box = range_bounds(m, e);
+        const auto left = [&] {
+            build_slotted(slots, split, base, base + 2, b, m, depth + 1, left_box);
+        };
+        const auto right = [&] {
+            build_slotted(slots, split, base + 1, base + 2 * (m - b), m, e, depth + 1, right_box);
+        };
+        if (e - b >= parallel_min) {
+            tbb::parallel_invoke(left, right);
+        } else {
+            left();
+            right();
+        }
+    }
 };
 
 }  // namespace rtlab::bvh_detail

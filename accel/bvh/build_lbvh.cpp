@@ -7,6 +7,7 @@
 // sort (a parallel LSD radix sort on the codes) and the searches.
 
 #include "accel/bvh/build_common.h"
+#include "base/scratch_vector.h"
 
 #include <algorithm>
 #include <bit>
@@ -43,11 +44,11 @@ std::uint32_t quantize(float c, float lo, float scale, std::uint32_t cells) {
 /// bits per pass, in fixed blocks: per-block digit counts (parallel), offsets digit-major then
 /// block order, scatter (parallel). The keys start in id order and are unique, so the result is
 /// the order of sorting the whole keys, for any thread count.
-void radix_sort_by_code(std::vector<std::uint64_t>& keys, std::uint32_t bits) {
+void radix_sort_by_code(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) {
     constexpr std::uint32_t digit_bits = 10, radix = 1u << digit_bits;
     constexpr std::size_t block = std::size_t{1} << 16;
     const std::size_t n = keys.size(), blocks = (n + block - 1) / block;
-    std::vector<std::uint64_t> out(n);
+    ScratchVector<std::uint64_t> out(n);
     std::vector<std::uint32_t> offset(blocks * radix);
     for (std::uint32_t shift = 32; shift < 32 + bits; shift += digit_bits) {
         const auto digit = [shift](std::uint64_t k) {
@@ -90,16 +91,16 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     // Code layout: bit 3i + 2 is x, 3i + 1 is y, 3i is z of quantised bit i.
     // Keys are unique (the id is in the low half) and made in id order, so the stable radix sort
     // on the code gives the order of sorting the whole keys.
-    std::vector<std::uint64_t> keys(td.ids.size());
+    ScratchVector<std::uint64_t> keys(td.ids.size());
     tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
-        const Vec3f& c = td.centers[td.ids[i]];
+        const Vec3f c = td.center(td.ids[i]);
         const std::uint32_t code = (spread_bits(quantize(c.x, cb.lo.x, scale[0], cells)) << 2) |
                                    (spread_bits(quantize(c.y, cb.lo.y, scale[1], cells)) << 1) |
                                    spread_bits(quantize(c.z, cb.lo.z, scale[2], cells));
         keys[i] = (static_cast<std::uint64_t>(code) << 32) | td.ids[i];
     });
     radix_sort_by_code(keys, 3 * td.config.morton_bits);
-    std::vector<std::uint32_t> codes(keys.size());
+    ScratchVector<std::uint32_t> codes(keys.size());
     tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
         codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);
         td.ids[i] = static_cast<std::uint32_t>(keys[i] & 0xFFFFFFFFu);

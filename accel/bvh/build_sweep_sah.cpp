@@ -27,7 +27,7 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     for (std::uint32_t a = 0; a < 3; ++a) {
         order[a] = td.ids;
         tbb::parallel_sort(order[a].begin(), order[a].end(), [&](std::uint32_t x, std::uint32_t y) {
-            const float cx = td.centers[x][a], cy = td.centers[y][a];
+            const float cx = td.center(x)[a], cy = td.center(y)[a];
             return cx < cy || (cx == cy && x < y);
         });
     }
