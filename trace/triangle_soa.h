@@ -12,6 +12,7 @@
 #include "intersect/ray.h"
 #include "intersect/triangle/moller_trumbore.h"
 #include "intersect/triangle/watertight.h"
+#include "trace/leaf_soa.h"
 
 #include <bit>
 #include <cstdint>
@@ -65,12 +66,6 @@ TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepa
                               std::span<const std::uint32_t> slot_ids,
                               SoaLayout layout,
                               std::span<const std::uint32_t> ids = {});
-
-/// The accepted hit of a slot range: its slot and hit.
-struct SlotHit {
-    std::uint32_t slot;
-    PrimHit<float> hit;
-};
 
 /// Closest hit among slots [first, first + count), exactly as MollerTrumbore<float>::intersect
 /// on each slot in order, each hit shrinking ray.tmax (which this does too); nullopt if none.

@@ -5,6 +5,7 @@
 // simd_level(); trace/wide_soa.h inlines them into the wide BVH traversal of the same level.
 
 #include "base/simd_lanes.h"
+#include "trace/leaf_soa.h"
 #include "trace/triangle_soa.h"
 
 #include <cstdint>
@@ -25,16 +26,6 @@ struct SoaChunk {
     alignas(32) float ts[8];
     alignas(32) float ad[8];
 };
-
-/// Bits of the lanes below n (n may exceed the lane count).
-inline unsigned soa_first_lanes(std::uint32_t n) {
-    return n >= 32 ? ~0u : (1u << n) - 1u;
-}
-
-/// Bits of the lanes of a chunk starting at slot s0 whose slots lie in [first, end).
-inline unsigned soa_lanes_in(std::uint32_t s0, std::uint32_t first, std::uint32_t end) {
-    return soa_first_lanes(end - s0) & ~soa_first_lanes(first > s0 ? first - s0 : 0);
-}
 
 }  // namespace rtlab
 

@@ -1,11 +1,12 @@
 #pragma once
-// Wide BVHs over TriangleSoA leaf data with the leaf kernel inlined into traversal: one function
-// per SIMD level (trace/wide_soa.inc) holds the node tests and the leaf tests of that level, so a
-// leaf costs no call and no level look-up. The answers are those of WideBvh::intersect_leaves /
-// occluded_leaves with soa_closest_* / soa_any_* as the leaf callback (same order of visits, same
-// counts).
+// Wide BVHs over TriangleSoA or SphereSoA leaf data with the leaf kernel inlined into traversal:
+// one function per SIMD level (trace/wide_soa.inc) holds the node tests and the leaf tests of that
+// level, so a leaf costs no call and no level look-up. The answers are those of
+// WideBvh::intersect_leaves / occluded_leaves with soa_closest_* / soa_any_* (sphere_soa_closest /
+// sphere_soa_any) as the leaf callback (same order of visits, same counts).
 
 #include "accel/bvh/wide_bvh.h"
+#include "trace/sphere_soa_kernels.h"
 #include "trace/triangle_soa_kernels.h"
 
 #include <cstdint>
@@ -66,6 +67,27 @@ SoaFound<IsAnyHit> wide_soa_trace(
         break;
     }
     return simd_sse2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr, stats);
+}
+
+/// As wide_soa_trace for spheres: SphereStable<float> with the ray's set-up rd on leaf data q in
+/// bvh's slot order.
+template <bool IsAnyHit, bool IsRobust, unsigned N, class R, StatsSink S>
+SoaFound<IsAnyHit> wide_sphere_trace(
+    const WideBvh<N>& bvh, const SphereSoA& q, R& ray, const SphereRay<float>& rd, S& stats) {
+    const auto started = bvh.start(ray, stats);
+    if (!started) {
+        return std::nullopt;
+    }
+    const WideView<N>& view = *started;
+    switch (simd_level()) {
+    case SimdLevel::avx512:
+        return simd_avx512::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+    case SimdLevel::avx2:
+        return simd_avx2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+    case SimdLevel::sse2:
+        break;
+    }
+    return simd_sse2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
 }
 
 }  // namespace rtlab

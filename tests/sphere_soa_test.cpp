@@ -1,0 +1,289 @@
+// Sphere leaf kernels (trace/sphere_soa.h): every SIMD level the CPU runs gives, bit for bit, the
+// answers of SphereStable<float> applied slot by slot (random, tangent and grazing rays, origins
+// inside and on spheres, the q == 0 root, overflowing directions); inlined into wide BVH traversal
+// (trace/wide_soa.h), the answers and counts of the leaf-callback traversal and brute force's hits.
+
+#include "trace/sphere_soa.h"
+
+#include "accel/any_accel.h"
+#include "base/simd.h"
+#include "support/accel_fixtures.h"
+#include "trace/wide_soa.h"
+
+#include <catch2/catch.hpp>
+
+#include <bit>
+#include <cstdint>
+#include <numeric>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+namespace rtlab {
+namespace {
+
+using M = SphereStable<float>;
+using Prepared = PreparedSphere<float>;
+
+bool same_bits(float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+}
+
+/// Random overlapping spheres in [0, 4]^3 of radii from tiny to large, a duplicate, the unit
+/// sphere at the origin and a sphere of integer centre (exact tangents and surface points).
+std::vector<Prepared> test_spheres(std::uint64_t seed, std::uint32_t count) {
+    test::Rng rng(seed);
+    std::vector<Prepared> out;
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const float r = rng.below(8) == 0 ? rng.uniform(1e-4f, 0.01f) : rng.uniform(0.05f, 0.8f);
+        out.push_back(M::prepare({rng.point_in({{0, 0, 0}, {4, 4, 4}}), r}));
+    }
+    out.push_back(out[count / 2]);
+    out.push_back(M::prepare({{0, 0, 0}, 1.0f}));
+    out.push_back(M::prepare({{2, 2, 2}, 0.5f}));
+    return out;
+}
+
+/// Rays at the spheres: towards a random point, tangent and grazing (the line at the radius
+/// from the centre, one ulp-scale nudge in or out), from inside, from the surface, the tangent
+/// line through its origin (q == 0), and directions so long that a = dir . dir overflows.
+std::vector<Rayf> test_rays(const std::vector<Prepared>& spheres, std::uint64_t seed) {
+    test::Rng rng(seed ^ 0x5EED);
+    std::vector<Rayf> rays;
+    const Bounds3f outer{{-2, -2, -2}, {6, 6, 6}};
+    for (std::uint32_t i = 0; i < 400; ++i) {
+        const Prepared& p = spheres[rng.below(static_cast<std::uint32_t>(spheres.size()))];
+        const Vec3f d = rng.direction();
+        Rayf r;
+        switch (i % 8) {
+        case 0:  // from outside towards a point of the scene
+            r.org = rng.point_in(outer);
+            r.dir = rng.point_in({{0, 0, 0}, {4, 4, 4}}) - r.org;
+            break;
+        case 1:
+        case 2: {  // tangent or grazing: the line passes at (1 + e) r from the centre
+            Vec3f n = cross(d, rng.direction());
+            n = normalize(n);
+            const float e = i % 8 == 1 ? 0.0f : rng.uniform(-3e-7f, 3e-7f);
+            r.org = p.center + n * (p.radius * (1.0f + e)) - d * rng.uniform(0.5f, 3.0f);
+            r.dir = d * rng.uniform(0.5f, 2.0f);
+            break;
+        }
+        case 3:  // from inside
+            r.org = p.center + d * (p.radius * rng.uniform(0.0f, 0.9f));
+            r.dir = rng.direction();
+            break;
+        case 4:  // from the surface, inwards or outwards
+            r.org = p.center + d * p.radius;
+            r.dir = rng.direction();
+            break;
+        case 5:  // finite window that may start behind the origin
+            r.org = rng.point_in(outer);
+            r.dir = rng.point_in({{0, 0, 0}, {4, 4, 4}}) - r.org;
+            r.tmin = rng.uniform(-0.5f, 0.5f);
+            r.tmax = r.tmin + rng.uniform(0.0f, 1.0f);
+            break;
+        case 6:  // axis-aligned through the scene
+            r.org = rng.point_in(outer);
+            r.dir = {0, 0, 0};
+            r.dir[rng.below(3)] = rng.below(2) ? 1.0f : -1.0f;
+            break;
+        default:  // a long direction: a near or past float's range
+            r.org = rng.point_in(outer);
+            r.dir = rng.direction() * (rng.below(2) ? 1e19f : 3e19f);
+            break;
+        }
+        rays.push_back(r);
+    }
+    // Exact tangent lines of the unit sphere at the origin and of the sphere at (2, 2, 2), from
+    // their tangent points (q == 0: t0 = t1 = -0) and from before them.
+    rays.push_back({{1, 0, 0}, {0, 1, 0}});
+    rays.push_back({{0, -1, 0}, {0, 0, -2}, -1.0f, 1.0f});
+    rays.push_back({{2.5f, 2, 2}, {0, 0, 1}});
+    rays.push_back({{2.5f, 2, 0}, {0, 0, 1}});
+    rays.push_back({{2, 1.5f, -3}, {0, 0, 0.5f}});
+    return rays;
+}
+
+/// The scalar method on slots [first, first + count): the closest hit (shrinking the window) and
+/// the first occluding slot.
+struct Scalar {
+    std::optional<SlotHit> closest;
+    float tmax;
+    std::optional<std::uint32_t> any;
+};
+Scalar scalar(const std::vector<Prepared>& prims,
+              const std::vector<std::uint32_t>& slots,
+              std::uint32_t first,
+              std::uint32_t count,
+              const Rayf& ray) {
+    const SphereRay<float> rd = M::precompute(ray);
+    Scalar want{std::nullopt, ray.tmax, std::nullopt};
+    Rayf r = ray;
+    for (std::uint32_t s = first; s < first + count; ++s) {
+        if (const auto h = M::intersect(prims[slots[s]], r, rd)) {
+            r.tmax = h->t;
+            want.closest = SlotHit{s, *h};
+        }
+        if (!want.any && M::occluded(prims[slots[s]], ray, rd)) {
+            want.any = s;
+        }
+    }
+    want.tmax = r.tmax;
+    return want;
+}
+
+TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by slot, bit for bit",
+          "[trace][simd][sphere]") {
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    const std::vector<Prepared> prims = test_spheres(seed, 40);
+    const std::vector<Rayf> rays = test_rays(prims, seed);
+    // Slots in a shuffled order, as a structure's leaves would hold them.
+    std::vector<std::uint32_t> slots(prims.size());
+    std::iota(slots.begin(), slots.end(), 0u);
+    test::Rng rng(seed + 7);
+    for (std::size_t i = slots.size(); i > 1; --i) {
+        std::swap(slots[i - 1], slots[rng.below(static_cast<std::uint32_t>(i))]);
+    }
+    const SphereSoA soa = make_sphere_soa(prims, slots);
+    std::vector<std::uint32_t> global(prims.size());
+    for (std::size_t i = 0; i < global.size(); ++i) {
+        global[i] = static_cast<std::uint32_t>(1000 + 3 * i);
+    }
+    const SphereSoA mapped = make_sphere_soa(prims, slots, global);
+    const auto n = soa.size();
+    REQUIRE(n == prims.size());
+    REQUIRE(soa.data.size() == (n + 3) / 4 * 20 + 20);
+    for (std::uint32_t s = 0; s < n; ++s) {
+        REQUIRE(soa.id(s) == slots[s]);
+        REQUIRE(mapped.id(s) == global[slots[s]]);
+        REQUIRE(same_bits(soa.at(s, 1), prims[slots[s]].center.y));
+        REQUIRE(same_bits(soa.at(s, 3), prims[slots[s]].radius2));
+    }
+    std::size_t hits = 0, inside = 0;
+    for (const Rayf& ray : rays) {
+        const SphereRay<float> rd = M::precompute(ray);
+        for (std::uint32_t count = 1; count <= 9; ++count) {
+            for (std::uint32_t first = 0; first + count <= n; first += 1 + count / 3) {
+                const Scalar want = scalar(prims, slots, first, count, ray);
+                hits += want.closest ? 1 : 0;
+                inside += want.closest && want.closest->hit.t > 0 &&
+                          M::roots(prims[slots[want.closest->slot]], ray)->first < ray.tmin;
+                for (const SimdLevel l : simd_levels) {
+                    if (l > simd_supported()) {
+                        continue;
+                    }
+                    CAPTURE(simd_name(l), first, count, ray.org.x, ray.org.y, ray.org.z, ray.dir.x,
+                            ray.dir.y, ray.dir.z, ray.tmin, ray.tmax);
+                    const ScopedSimdCap cap(l);
+                    Rayf got_ray = ray;
+                    const auto got = sphere_soa_closest(soa, first, count, got_ray, rd);
+                    REQUIRE(got.has_value() == want.closest.has_value());
+                    REQUIRE(same_bits(got_ray.tmax, want.tmax));
+                    if (got) {
+                        REQUIRE(got->slot == want.closest->slot);
+                        REQUIRE(same_bits(got->hit.t, want.closest->hit.t));
+                        REQUIRE(same_bits(got->hit.u, want.closest->hit.u));
+                        REQUIRE(same_bits(got->hit.v, want.closest->hit.v));
+                    }
+                    REQUIRE(sphere_soa_any(soa, first, count, ray, rd) == want.any);
+                }
+            }
+        }
+    }
+    CHECK(hits > 1000);   // the rays do hit
+    CHECK(inside > 100);  // and leave spheres their origin is in
+}
+
+/// wide_sphere_trace against intersect_leaves/occluded_leaves with the leaf kernel as callback,
+/// and the closest hit against the scalar method on every sphere (brute force).
+template <bool IsRobust, unsigned N>
+void check_inlined(const WideBvh<N>& bvh,
+                   const std::vector<Prepared>& prims,
+                   const std::vector<Rayf>& rays) {
+    const SphereSoA soa = make_sphere_soa(prims, bvh.prim_ids);
+    for (const Rayf& ray : rays) {
+        const SphereRay<float> rd = M::precompute(ray);
+        Rayf want_ray = ray;
+        std::optional<SlotHit> want;
+        TraversalStats want_st;
+        bvh.template intersect_leaves<IsRobust>(
+            want_ray,
+            [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
+                const auto h = sphere_soa_closest(soa, first, count, r, rd);
+                want = h ? h : want;
+                return h.has_value();
+            },
+            want_st);
+        std::optional<std::uint32_t> want_any;
+        TraversalStats want_any_st;
+        bvh.template occluded_leaves<IsRobust>(
+            ray,
+            [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
+                want_any = sphere_soa_any(soa, first, count, r, rd);
+                return want_any.has_value();
+            },
+            want_any_st);
+        Rayf got_ray = ray;
+        TraversalStats st, any_st;
+        const auto got = wide_sphere_trace<false, IsRobust>(bvh, soa, got_ray, rd, st);
+        const auto got_any = wide_sphere_trace<true, IsRobust>(bvh, soa, ray, rd, any_st);
+        REQUIRE(got.has_value() == want.has_value());
+        REQUIRE(same_bits(got_ray.tmax, want_ray.tmax));
+        if (want) {
+            REQUIRE(got->slot == want->slot);
+            REQUIRE(same_bits(got->hit.t, want->hit.t));
+        }
+        REQUIRE(got_any == want_any);
+        REQUIRE(st.nodes == want_st.nodes);
+        REQUIRE(st.prims == want_st.prims);
+        REQUIRE(any_st.nodes == want_any_st.nodes);
+        REQUIRE(any_st.prims == want_any_st.prims);
+        // Brute force: the nearest t of any sphere (ties may name another sphere and, at t = 0,
+        // differ in the zero's sign: the last of equal roots is kept).
+        Rayf brute_ray = ray;
+        bool brute_hit = false;
+        for (const Prepared& p : prims) {
+            const auto h = is_valid(ray) ? M::intersect(p, brute_ray, rd) : std::nullopt;
+            if (h) {
+                brute_ray.tmax = h->t;
+                brute_hit = true;
+            }
+        }
+        REQUIRE(got.has_value() == brute_hit);
+        REQUIRE(got_any.has_value() == brute_hit);
+        REQUIRE(got_ray.tmax == brute_ray.tmax);  // -0 and +0 tie (huge directions)
+    }
+}
+
+TEST_CASE("sphere leaf kernels inlined into wide BVH traversal give the leaf-callback answers",
+          "[trace][simd][wide][sphere]") {
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    const std::vector<Prepared> prims = test_spheres(seed, 500);
+    std::vector<Bounds3f> boxes;
+    for (const Prepared& p : prims) {
+        boxes.push_back(M::bounds(p));
+    }
+    const std::vector<Rayf> rays = test_rays(prims, seed);
+    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1"}) {
+        const AnyAccel accel = build_accel(spec, BuildInput{boxes, {}});
+        visit_accel(accel, [&](const auto& bvh) {
+            if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {
+                for (const SimdLevel l : simd_levels) {
+                    if (l > simd_supported()) {
+                        continue;
+                    }
+                    CAPTURE(spec, simd_name(l));
+                    const ScopedSimdCap cap(l);
+                    check_inlined<false>(bvh, prims, rays);
+                    check_inlined<true>(bvh, prims, rays);
+                }
+            } else {
+                FAIL(spec << " is not a wide BVH");
+            }
+        });
+    }
+}
+
+}  // namespace
+}  // namespace rtlab

@@ -1,0 +1,71 @@
+#pragma once
+// Spheres structure-of-arrays in a structure's leaf-slot order, for testing a whole leaf at once
+// with SphereStable<float> (intersect/sphere/stable.h) on 4 (SSE2) or 8 (AVX2, AVX-512) lanes, the
+// level chosen per call by base/simd.h. Each kernel gives exactly the answers of the scalar method
+// applied to the slots one after another: lanes compute the roots with the same IEEE operations
+// in the same order (no FMA), and candidate lanes are then accepted in slot order against the
+// shrinking window with the comparisons of detail::pick_root. As the scalar method, the hits carry
+// u = v = 0.
+
+#include "base/large_pages.h"
+#include "intersect/ray.h"
+#include "intersect/sphere/stable.h"
+#include "trace/leaf_soa.h"
+
+#include <bit>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+namespace rtlab {
+
+/// Spheres by slot in groups of four: group g holds slots 4g .. 4g + 3 as rows of four floats,
+/// centre x, y, z, squared radius and the slot's id (the caller's, e.g. a global primitive id; lane
+/// s % 4 of a row is slot s), so a leaf's spheres and the id of its hit lie in one or two adjacent
+/// 80-byte groups. One zero group of padding follows the last, so two-group (8-lane) loads from
+/// any slot's group stay inside the data.
+struct SphereSoA {
+    static constexpr std::uint32_t group = 4;                    ///< slots per group
+    static constexpr std::uint32_t rows = 5;                     ///< cx, cy, cz, radius2, id
+    static constexpr std::uint32_t group_floats = group * rows;  ///< floats per group
+    static constexpr unsigned id_row = 4;                        ///< the row of the ids
+    std::uint32_t slots = 0;  ///< number of slots (without the padding)
+    LargeVector<float> data;  ///< the groups, then one zero group
+
+    /// Number of slots (without the padding).
+    std::uint32_t size() const { return slots; }
+    /// Row r (0..4) of group g: four floats.
+    const float* row(std::uint32_t g, unsigned r) const {
+        return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
+    }
+    /// Coordinate r (0..3: centre x, y, z, radius2) of slot s.
+    float at(std::uint32_t s, unsigned r) const { return row(s / group, r)[s % group]; }
+    /// The id stored for slot s.
+    std::uint32_t id(std::uint32_t s) const {
+        return std::bit_cast<std::uint32_t>(row(s / group, id_row)[s % group]);
+    }
+};
+
+/// The spheres prims[slot_ids[s]] for every slot s, each with the id ids[slot_ids[s]]
+/// (slot_ids[s] itself when ids is empty).
+SphereSoA make_sphere_soa(std::span<const PreparedSphere<float>> prims,
+                          std::span<const std::uint32_t> slot_ids,
+                          std::span<const std::uint32_t> ids = {});
+
+/// Closest hit among slots [first, first + count), exactly as SphereStable<float>::intersect with
+/// the ray's set-up rd on each slot in order, each hit shrinking ray.tmax (which this does too);
+/// nullopt if none.
+std::optional<SlotHit> sphere_soa_closest(const SphereSoA& soa,
+                                          std::uint32_t first,
+                                          std::uint32_t count,
+                                          Rayf& ray,
+                                          const SphereRay<float>& rd);
+
+/// The first slot of [first, first + count) SphereStable<float>::occluded reports, or nullopt.
+std::optional<std::uint32_t> sphere_soa_any(const SphereSoA& soa,
+                                            std::uint32_t first,
+                                            std::uint32_t count,
+                                            const Rayf& ray,
+                                            const SphereRay<float>& rd);
+
+}  // namespace rtlab

@@ -1,0 +1,39 @@
+#pragma once
+// The SphereSoA leaf kernels (trace/sphere_soa_kernels.inc) compiled once per SIMD level of
+// base/simd.h: namespaces simd_sse2, simd_avx2 and simd_avx512, each in its own target region with
+// that level's lanes (base/simd_lanes.h). trace/sphere_soa.cpp picks one per call by
+// simd_level(); trace/wide_soa.h inlines them into the wide BVH traversal of the same level.
+
+#include "base/simd_lanes.h"
+#include "trace/leaf_soa.h"
+#include "trace/sphere_soa.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace rtlab {
+
+/// One chunk of at most 8 slots: `cand` has a bit per lane whose sphere detail::pick_root hits
+/// with the window the chunk started with (which only shrinks), t each lane's picked root.
+struct SphereChunk {
+    unsigned cand = 0;
+    alignas(32) float t[8];
+};
+
+}  // namespace rtlab
+
+namespace rtlab::simd_sse2 {
+#include "trace/sphere_soa_kernels.inc"
+}  // namespace rtlab::simd_sse2
+
+RTLAB_SIMD_BEGIN_AVX2
+namespace rtlab::simd_avx2 {
+#include "trace/sphere_soa_kernels.inc"
+}  // namespace rtlab::simd_avx2
+RTLAB_SIMD_END
+
+RTLAB_SIMD_BEGIN_AVX512
+namespace rtlab::simd_avx512 {
+#include "trace/sphere_soa_kernels.inc"
+}  // namespace rtlab::simd_avx512
+RTLAB_SIMD_END
