@@ -1,13 +1,15 @@
 // Sphere leaf kernels (trace/sphere_soa.h): every SIMD level the CPU runs gives, bit for bit, the
 // answers of SphereStable<float> applied slot by slot (random, tangent and grazing rays, origins
 // inside and on spheres, the q == 0 root, overflowing directions); inlined into wide BVH traversal
-// (trace/wide_soa.h), the answers and counts of the leaf-callback traversal and brute force's hits.
+// (trace/wide_soa.h), the answers and counts of the leaf-callback traversal; and traced by
+// SceneTracer on bvh4/bvh8 through the SphereSoA, the hits of the per-id path and of brute force.
 
 #include "trace/sphere_soa.h"
 
 #include "accel/any_accel.h"
 #include "base/simd.h"
 #include "support/accel_fixtures.h"
+#include "trace/scene_tracer.h"
 #include "trace/wide_soa.h"
 
 #include <catch2/catch.hpp>
@@ -16,7 +18,9 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <string>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace rtlab {
@@ -282,6 +286,68 @@ TEST_CASE("sphere leaf kernels inlined into wide BVH traversal give the leaf-cal
                 FAIL(spec << " is not a wide BVH");
             }
         });
+    }
+}
+
+/// The closest hits and blockers of rays through a tracer of scene.
+struct Traced {
+    std::vector<Hit> hits;
+    std::vector<std::uint32_t> blockers;
+    std::size_t soa_slots = 0;  ///< slots of the sphere set's SphereSoA (0: another path)
+};
+Traced trace(const Scene& scene, const std::vector<Rayf>& rays, const std::string& spec) {
+    const SceneTracer tracer(scene, TraceSetup{spec, {"stable"}, false});
+    Traced t;
+    for (const AnyPrimSet& set : tracer.sets()) {
+        std::visit(
+            [&](const auto& s) {
+                if constexpr (std::is_same_v<typename std::decay_t<decltype(s)>::Method, M>) {
+                    t.soa_slots = s.soa.size();
+                }
+            },
+            set);
+    }
+    t.hits.resize(rays.size());
+    t.blockers.resize(rays.size());
+    tracer.intersect(rays, t.hits);
+    tracer.occluded(rays, t.blockers);
+    return t;
+}
+
+TEST_CASE("SceneTracer traces spheres on bvh4/bvh8 through the SphereSoA like the per-id path",
+          "[trace][sphere][wide]") {
+    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    const std::vector<Prepared> prims = test_spheres(seed, 2000);
+    Scene scene;
+    scene.materials.push_back(Material{});
+    for (const Prepared& p : prims) {
+        scene.add(SphereObject{p.center, p.radius});
+    }
+    const std::vector<Rayf> rays = test_rays(prims, seed);
+    const Traced brute = trace(scene, rays, "brute");
+    // The wide BVHs inline the kernel; the pair BVH and the kd-tree (slots repeat primitives)
+    // call it per leaf.
+    for (const std::string spec : {"bvh4", "bvh8", "bvh8,from=pbinned", "bvh:pair", "kdtree:sah"}) {
+        CAPTURE(spec);
+        const Traced ids = trace(scene, rays, spec + ",leaves=ids");
+        const Traced soa = trace(scene, rays, spec);
+        CHECK(ids.soa_slots == 0);
+        CHECK(soa.soa_slots >= prims.size());  // the leaf kernel path is taken
+        std::size_t hit = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            CAPTURE(i);
+            const Hit& w = ids.hits[i];
+            const Hit& g = soa.hits[i];
+            REQUIRE(g.prim == w.prim);  // same tree, same order of tests: same sphere
+            REQUIRE(same_bits(g.t, w.t));
+            REQUIRE(same_bits(g.u, w.u));
+            REQUIRE(same_bits(g.v, w.v));
+            REQUIRE(g.valid() == brute.hits[i].valid());
+            REQUIRE(g.t == brute.hits[i].t);  // another order: only the sign of a 0 may differ
+            REQUIRE((soa.blockers[i] != invalid_id) == g.valid());
+            hit += g.valid() ? 1 : 0;
+        }
+        CHECK(hit > rays.size() / 4);
     }
 }
 

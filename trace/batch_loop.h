@@ -79,7 +79,7 @@ struct PerRaySink {
 // True when set s of method M on structure A is traced leaf by leaf with M's SIMD leaf kernel.
 template <class M, class A>
 bool uses_leaf_kernel(const PrimSet<M>& s, const A&) {
-    if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+    if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
         return s.soa.size() != 0;
     } else {
         return false;
@@ -89,7 +89,7 @@ bool uses_leaf_kernel(const PrimSet<M>& s, const A&) {
 // True when set s is traced leaf by leaf over its slot-ordered primitives (slot_prims).
 template <class M, class A>
 bool uses_slot_prims(const PrimSet<M>& s, const A&) {
-    if constexpr (!soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+    if constexpr (!has_leaf_kernel<M> && LeafRangeAccel<A>) {
         return !s.slot_prims.empty();
     } else {
         return false;
@@ -110,14 +110,21 @@ const WatertightRay<float>* ray_data_ptr(const RayDataOf<M>& rd) {
     }
 }
 
-// The leaf kernel of M (MollerTrumbore or Watertight) on slots [first, first + count).
+// True when M's leaf kernel is the sphere one (SphereStable<float>).
 template <class M>
-std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
+inline constexpr bool is_sphere_soa = std::is_same_v<LeafSoa<M>, SphereSoA>;
+
+// The leaf kernel of M (MollerTrumbore, Watertight or SphereStable) on slots [first,
+// first + count).
+template <class M>
+std::optional<SlotHit> leaf_closest(const LeafSoa<M>& q,
                                     std::uint32_t first,
                                     std::uint32_t count,
                                     Rayf& ray,
                                     const RayDataOf<M>& rd) {
-    if constexpr (is_watertight<M>) {
+    if constexpr (is_sphere_soa<M>) {
+        return sphere_soa_closest(q, first, count, ray, rd);
+    } else if constexpr (is_watertight<M>) {
         return soa_closest_watertight(q, first, count, ray, rd);
     } else {
         return soa_closest_mt(q, first, count, ray);
@@ -125,15 +132,30 @@ std::optional<SlotHit> leaf_closest(const TriangleSoA& q,
 }
 
 template <class M>
-std::optional<std::uint32_t> leaf_any(const TriangleSoA& q,
+std::optional<std::uint32_t> leaf_any(const LeafSoa<M>& q,
                                       std::uint32_t first,
                                       std::uint32_t count,
                                       const Rayf& ray,
                                       const RayDataOf<M>& rd) {
-    if constexpr (is_watertight<M>) {
+    if constexpr (is_sphere_soa<M>) {
+        return sphere_soa_any(q, first, count, ray, rd);
+    } else if constexpr (is_watertight<M>) {
         return soa_any_watertight(q, first, count, ray, rd);
     } else {
         return soa_any_mt(q, first, count, ray);
+    }
+}
+
+// M's leaf kernel inlined into wide BVH traversal (trace/wide_soa.h): the closest hit's slot and
+// hit (IsAnyHit false) or any hit's slot.
+template <bool IsAnyHit, bool IsRobust, class M, unsigned N, class R, class Stats>
+SoaFound<IsAnyHit> wide_leaf_trace(
+    const WideBvh<N>& bvh, const LeafSoa<M>& q, R& ray, const RayDataOf<M>& rd, Stats& stats) {
+    if constexpr (is_sphere_soa<M>) {
+        return wide_sphere_trace<IsAnyHit, IsRobust>(bvh, q, ray, rd, stats);
+    } else {
+        return wide_soa_trace<IsAnyHit, IsRobust, is_watertight<M>>(bvh, q, ray,
+                                                                    ray_data_ptr<M>(rd), stats);
     }
 }
 
@@ -153,11 +175,10 @@ struct ClosestQuery {
         Rayf ray = rays[i];
         ray.tmax = std::min(ray.tmax, hits[i].t);
         const RayDataOf<M> rd = precompute_ray<M>(ray);
-        if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+        if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
                 if constexpr (is_wide_bvh<A>) {
-                    const auto h = wide_soa_trace<false, IsRobust, is_watertight<M>>(
-                        acc, s.soa, ray, ray_data_ptr<M>(rd), stats);
+                    const auto h = wide_leaf_trace<false, IsRobust, M>(acc, s.soa, ray, rd, stats);
                     if (h) {
                         hits[i] = {h->hit.t, h->hit.u, h->hit.v, s.soa.id(h->slot)};
                     }
@@ -229,11 +250,11 @@ struct AnyHitQuery {
             return;
         }
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
-        if constexpr (soa_layout_of<M>.has_value() && LeafRangeAccel<A>) {
+        if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
                 if constexpr (is_wide_bvh<A>) {
-                    const auto h = wide_soa_trace<true, IsRobust, is_watertight<M>>(
-                        acc, s.soa, rays[i], ray_data_ptr<M>(rd), stats);
+                    const auto h =
+                        wide_leaf_trace<true, IsRobust, M>(acc, s.soa, rays[i], rd, stats);
                     if (h) {
                         blocker[i] = s.soa.id(*h);
                     }

@@ -40,6 +40,8 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
             }
             if constexpr (soa_layout_of<M>.has_value()) {
                 set.soa = make_triangle_soa(set.prims, a.prim_ids, *soa_layout_of<M>, set.ids);
+            } else if constexpr (std::is_same_v<LeafSoa<M>, SphereSoA>) {
+                set.soa = make_sphere_soa(set.prims, a.prim_ids, set.ids);
             } else {
                 set.slot_prims.reserve(a.prim_ids.size());
                 set.slot_ids.reserve(a.prim_ids.size());

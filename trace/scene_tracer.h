@@ -67,6 +67,8 @@ public:
                                                               bool with_epo) const;
     /// Number of global primitives.
     std::uint32_t primitive_count() const { return prim_count_; }
+    /// The prepared sets, in set order (tests check which leaf path a set takes).
+    const std::vector<AnyPrimSet>& sets() const { return sets_; }
 
 private:
     std::vector<AnyPrimSet> sets_;
