@@ -2,13 +2,15 @@
 // of equal width over the node's centroid bounds on each axis, a split between bins chosen by the
 // SAH; leaf when the SAH prefers it and the range fits in max_leaf_size. A range whose centroids
 // coincide (or bin_count == 1) falls back to the object median. Cost: O(N log N); subtrees in
-// parallel with `threads`.
+// parallel with `threads`, and the bins of large ranges (the top nodes) filled in parallel blocks.
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <limits>
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_reduce.h>
 #include <vector>
 
 namespace rtlab {
@@ -30,21 +32,91 @@ std::uint32_t bin_of(float c, float lo, float scale, std::uint32_t bins) {
     return std::min(bins - 1, static_cast<std::uint32_t>(f));
 }
 
+/// The bins of a range on all three axes at once (bins per axis, axis after axis): each axis's
+/// lower centroid bound and scale bins / extent, 0 for an axis whose centroids coincide (all its
+/// primitives then land in bin 0 and the axis is not considered).
+struct AxisBins {
+    std::vector<Bounds3f> box;
+    std::vector<std::uint32_t> count;
+    float lo[3] = {};
+    float scale[3] = {};
+
+    void clear() {
+        std::fill(box.begin(), box.end(), Bounds3f{});
+        std::fill(count.begin(), count.end(), 0u);
+    }
+    /// Adds ids[b, e) of t: one pass reading each box and centre once for the three axes.
+    void add(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e) {
+        const auto bins = static_cast<std::uint32_t>(count.size() / 3);
+        for (std::uint32_t i = b; i < e; ++i) {
+            const std::uint32_t id = t.ids[i];
+            const Vec3f c = t.center(id);
+            for (std::uint32_t axis = 0; axis < 3; ++axis) {
+                const std::uint32_t k = axis * bins + bin_of(c[axis], lo[axis], scale[axis], bins);
+                box[k].extend(t.boxes[id]);
+                ++count[k];
+            }
+        }
+    }
+    /// Adds the bins of o (same axes and scales).
+    void merge(const AxisBins& o) {
+        for (std::size_t k = 0; k < count.size(); ++k) {
+            box[k].extend(o.box[k]);
+            count[k] += o.count[k];
+        }
+    }
+};
+
+/// Ranges at least this long are binned in parallel blocks of `bin_block` ids (exact: unions and
+/// counts do not depend on the grouping, so the tree is the same for any thread count). The top
+/// nodes would otherwise bin a whole level on one thread.
+constexpr std::uint32_t parallel_bin_min = 1u << 16;
+constexpr std::uint32_t bin_block = 1u << 14;
+
+/// Fills g (bins per axis already sized) with the bins of ids[b, e) over their centroid bounds.
+void bin_range(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, AxisBins& g) {
+    const auto bins = static_cast<float>(g.count.size() / 3);
+    const Bounds3f cb = t.centroid_bounds(b, e);
+    for (std::uint32_t axis = 0; axis < 3; ++axis) {
+        const float extent = cb.hi[axis] - cb.lo[axis];
+        g.lo[axis] = cb.lo[axis];
+        g.scale[axis] = extent > 0.0f ? bins / extent : 0.0f;
+    }
+    g.clear();
+    if (e - b < parallel_bin_min) {
+        g.add(t, b, e);
+        return;
+    }
+    // g is this thread's scratch, which a task this thread runs while it waits may reuse: the
+    // empty bins are copied first, and g is only written once the reduction is done.
+    const AxisBins empty = g;
+    g = tbb::parallel_reduce(
+        tbb::blocked_range<std::uint32_t>(b, e, bin_block), empty,
+        [&](const tbb::blocked_range<std::uint32_t>& r, AxisBins acc) {
+            acc.add(t, r.begin(), r.end());
+            return acc;
+        },
+        [](AxisBins x, const AxisBins& y) {
+            x.merge(y);
+            return x;
+        });
+}
+
 }  // namespace
 
 Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const std::uint32_t bins = td.config.bin_count;
-    // Bin scratch, one per thread (subtrees may build concurrently).
+    // Bins and sweep scratch, one per thread (subtrees may build concurrently).
     struct Scratch {
-        std::vector<Bounds3f> bin_box;
-        std::vector<std::uint32_t> bin_count;
+        AxisBins bins;
         std::vector<float> right_area;
         std::vector<std::uint32_t> right_count;
     };
     tbb::enumerable_thread_specific<Scratch> scratch([bins] {
-        return Scratch{std::vector<Bounds3f>(bins), std::vector<std::uint32_t>(bins),
-                       std::vector<float>(bins), std::vector<std::uint32_t>(bins)};
+        return Scratch{
+            AxisBins{std::vector<Bounds3f>(3 * bins), std::vector<std::uint32_t>(3 * bins)},
+            std::vector<float>(bins), std::vector<std::uint32_t>(bins)};
     });
 
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
@@ -56,26 +128,18 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
         if (balance || bins < 2) {
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }
-        const Bounds3f cb = t.centroid_bounds(b, e);
-        auto& [bin_box, bin_count, right_area, right_count] = scratch.local();
+        auto& [g, right_area, right_count] = scratch.local();
+        bin_range(t, b, e, g);
         // Costs are compared unnormalised (times the node area), so zero-area nodes need no
         // division: leaf = Ci * n * A, split = Ct * A + Ci * (A_L n_L + A_R n_R).
         float best = std::numeric_limits<float>::infinity();
         std::uint32_t best_axis = 0, best_bin = 0;
         for (std::uint32_t axis = 0; axis < 3; ++axis) {
-            const float lo = cb.lo[axis], extent = cb.hi[axis] - cb.lo[axis];
-            if (!(extent > 0.0f)) {
+            if (g.scale[axis] == 0.0f) {
                 continue;
             }
-            const float scale = static_cast<float>(bins) / extent;
-            std::fill(bin_box.begin(), bin_box.end(), Bounds3f{});
-            std::fill(bin_count.begin(), bin_count.end(), 0u);
-            for (std::uint32_t i = b; i < e; ++i) {
-                const std::uint32_t id = t.ids[i];
-                const std::uint32_t k = bin_of(t.center(id)[axis], lo, scale, bins);
-                bin_box[k].extend(t.boxes[id]);
-                ++bin_count[k];
-            }
+            const Bounds3f* bin_box = &g.box[axis * bins];
+            const std::uint32_t* bin_count = &g.count[axis * bins];
             // Sweep from the right, then from the left; the split after bin k puts bins [0, k]
             // left.
             Bounds3f acc;
@@ -112,8 +176,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
         if (n <= t.config.max_leaf_size && leaf_cost <= split_cost) {
             return std::nullopt;
         }
-        const float lo = cb.lo[best_axis];
-        const float scale = static_cast<float>(bins) / (cb.hi[best_axis] - lo);
+        const float lo = g.lo[best_axis], scale = g.scale[best_axis];
         const auto first_right =
             std::partition(t.ids.begin() + b, t.ids.begin() + e, [&](std::uint32_t id) {
                 return bin_of(t.center(id)[best_axis], lo, scale, bins) <= best_bin;
