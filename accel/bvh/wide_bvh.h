@@ -90,7 +90,8 @@ struct WideBvh {
         if (nodes.empty()) {
             return std::nullopt;
         }
-        return WideView<N>{nodes.data(), prim_ids.data()};
+        return WideView<N>{nodes.data(), prim_ids.data(),
+                           nodes.size() * sizeof(WideNode<N>) >= prefetch_min_bytes};
     }
 
 private:

@@ -5,6 +5,7 @@
 
 #include "accel/accel.h"
 #include "accel/bvh/wide_node.h"
+#include "base/prefetch.h"
 #include "base/simd_lanes.h"
 #include "intersect/box/slabs.h"
 
@@ -19,6 +20,7 @@ template <unsigned N>
 struct WideView {
     const WideNode<N>* nodes;
     const std::uint32_t* prim_ids;
+    bool prefetch;  ///< prefetch hit children (nodes of at least prefetch_min_bytes)
 };
 
 /// A traversal stack entry: a child slot's reference and count (as in WideNode) and the entry
