@@ -2,6 +2,7 @@
 // seeded scene of the family traced with "brute" and with "bvh:binned" (plain and robust
 // traversal) gives the same closest hits, and any hit agrees with closest-hit validity.
 
+#include "base/prefetch.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 #include "trace/method_families.h"
@@ -267,6 +268,49 @@ TEST_CASE("every registered structure, default and varied, traces every family l
         using Default = std::tuple_element_t<0, First>;
         check_method(Family::name, Default::name, IntersectionMethod<Default>, specs, {3});
     });
+}
+
+TEST_CASE("structures large enough to prefetch children trace like brute force", "[trace][accel]") {
+    // 80,000 small triangles or spheres: with leaves of one primitive the wide and pair nodes
+    // take more than prefetch_min_bytes, so traversal prefetches hit children's nodes and leaf
+    // blocks (base/prefetch.h); the answers must not change.
+    constexpr std::uint32_t count = 80000;
+    for (const std::string_view family : {"triangle", "sphere"}) {
+        CAPTURE(family);
+        Rng rng(7);
+        Scene s;
+        s.materials.push_back(Material{});
+        const Bounds3f space{{0, 0, 0}, {4, 4, 4}};
+        MeshObject m;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const Vec3f c = rng.point_in(space);
+            if (family == "sphere") {
+                s.add(SphereObject{c, rng.uniform(0.005f, 0.03f)});
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) {
+                m.mesh.positions.push_back(c + rng.direction() * 0.04f);
+            }
+            m.mesh.triangles.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+        }
+        if (family == "triangle") {
+            s.add(std::move(m));
+        }
+        const std::vector<Rayf> rays = family_rays(s, 7);
+        const std::string method = family == "sphere" ? "stable" : "moller_trumbore";
+        const Answers brute = trace(s, rays, "brute", family, method, true, false);
+        for (const char* spec : {"bvh8,from=lbvh,max_leaf=1", "bvh4,from=lbvh,max_leaf=1",
+                                 "bvh:pair,from=lbvh,max_leaf=1"}) {
+            CAPTURE(spec);
+            const SceneTracer tracer(s, TraceSetup{spec, {method}, false});
+            REQUIRE(tracer.infos().size() == 1);
+            CHECK(tracer.infos()[0].bytes >= prefetch_min_bytes + 4 * std::uint64_t{count});
+            for (const bool robust : {false, true}) {
+                CAPTURE(robust);
+                check_agree(rays, brute, trace(s, rays, spec, family, method, true, robust));
+            }
+        }
+    }
 }
 
 TEST_CASE("the --method name table is generated from the method lists", "[trace][methods]") {
