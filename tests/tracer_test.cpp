@@ -272,8 +272,8 @@ TEST_CASE("every registered structure, default and varied, traces every family l
 
 TEST_CASE("structures large enough to prefetch children trace like brute force", "[trace][accel]") {
     // 80,000 small triangles or spheres: with leaves of one primitive the wide and pair nodes
-    // take more than prefetch_min_bytes, so traversal prefetches hit children's nodes and leaf
-    // blocks (base/prefetch.h); the answers must not change.
+    // take more than prefetch_min_bytes, so traversal prefetches hit children's nodes
+    // (base/prefetch.h); the answers must not change.
     constexpr std::uint32_t count = 80000;
     for (const std::string_view family : {"triangle", "sphere"}) {
         CAPTURE(family);

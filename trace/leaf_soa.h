@@ -2,7 +2,6 @@
 // What the SoA leaf kernels (trace/triangle_soa.h, trace/sphere_soa.h) share: the hit a slot range
 // reports and the lane masks of a slot range within a chunk of lanes.
 
-#include "base/prefetch.h"
 #include "intersect/hit.h"
 
 #include <cstdint>
@@ -23,19 +22,6 @@ inline unsigned soa_first_lanes(std::uint32_t n) {
 /// Bits of the lanes of a chunk starting at slot s0 whose slots lie in [first, end).
 inline unsigned soa_lanes_in(std::uint32_t s0, std::uint32_t first, std::uint32_t end) {
     return soa_first_lanes(end - s0) & ~soa_first_lanes(first > s0 ? first - s0 : 0);
-}
-
-/// Starts fetching every cache line of the groups holding slots [first, first + count) (count >=
-/// 1) of a slot-ordered leaf array q (TriangleSoA, SphereSoA; their padding group keeps the end
-/// inside the data).
-template <class Q>
-inline void prefetch_slots(const Q& q, std::uint32_t first, std::uint32_t count) {
-    const auto b =
-        reinterpret_cast<std::uintptr_t>(q.row(first / Q::group, 0)) & ~std::uintptr_t{63};
-    const auto e = reinterpret_cast<std::uintptr_t>(q.row((first + count - 1) / Q::group + 1, 0));
-    for (std::uintptr_t p = b; p < e; p += 64) {
-        prefetch_line(reinterpret_cast<const void*>(p));
-    }
 }
 
 }  // namespace rtlab
