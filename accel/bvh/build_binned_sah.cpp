@@ -67,13 +67,8 @@ struct AxisBins {
     }
 };
 
-/// Ranges at least this long are binned in parallel blocks of `bin_block` ids (exact: unions and
-/// counts do not depend on the grouping, so the tree is the same for any thread count). The top
-/// nodes would otherwise bin a whole level on one thread.
-constexpr std::uint32_t parallel_bin_min = 1u << 16;
-constexpr std::uint32_t bin_block = 1u << 14;
-
-/// Fills g (bins per axis already sized) with the bins of ids[b, e) over their centroid bounds.
+/// Fills g (bins per axis already sized) with the bins of ids[b, e) over their centroid bounds;
+/// ranges of bvh_detail::reduce_min or more in parallel blocks.
 void bin_range(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, AxisBins& g) {
     const auto bins = static_cast<float>(g.count.size() / 3);
     const Bounds3f cb = t.centroid_bounds(b, e);
@@ -83,7 +78,7 @@ void bin_range(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, A
         g.scale[axis] = extent > 0.0f ? bins / extent : 0.0f;
     }
     g.clear();
-    if (e - b < parallel_bin_min) {
+    if (e - b < bvh_detail::reduce_min) {
         g.add(t, b, e);
         return;
     }
@@ -91,7 +86,7 @@ void bin_range(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, A
     // empty bins are copied first, and g is only written once the reduction is done.
     const AxisBins empty = g;
     g = tbb::parallel_reduce(
-        tbb::blocked_range<std::uint32_t>(b, e, bin_block), empty,
+        tbb::blocked_range<std::uint32_t>(b, e, bvh_detail::reduce_block), empty,
         [&](const tbb::blocked_range<std::uint32_t>& r, AxisBins acc) {
             acc.add(t, r.begin(), r.end());
             return acc;

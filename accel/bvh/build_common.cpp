@@ -14,11 +14,6 @@ namespace rtlab::bvh_detail {
 
 namespace {
 
-/// Ranges at least this long are reduced in parallel blocks of `reduce_block`: the top nodes of
-/// an unbalanced tree (a floor split off a mesh) would otherwise run one thread for a whole level.
-constexpr std::uint32_t reduce_min = 1u << 16;
-constexpr std::uint32_t reduce_block = 1u << 14;
-
 /// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
 template <class F>
 void for_blocks(std::size_t n, const F& f) {

@@ -24,6 +24,12 @@ std::string check_prim_ids(std::span<const std::uint32_t> prim_ids,
                            std::uint32_t prim_count,
                            std::uint32_t unreferenced_count);
 
+/// Ranges at least this long are reduced (bounds, bins) in parallel blocks of `reduce_block`:
+/// the top nodes of an unbalanced tree (a floor split off a mesh) would otherwise run one thread
+/// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.
+inline constexpr std::uint32_t reduce_min = 1u << 16;
+inline constexpr std::uint32_t reduce_block = 1u << 14;
+
 /// ceil(log2(n)) for n >= 1 (0 for n = 1).
 std::uint32_t ceil_log2(std::uint64_t n);
 
