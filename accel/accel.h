@@ -78,9 +78,14 @@ struct NullLeafRange {
 };
 }  // namespace detail
 
+/// The prim_ids entry of a padding slot: a structure may pad prim_ids so that its leaves start at
+/// aligned slots (whole SIMD groups of slot-ordered leaf data); a padding slot lies in no leaf.
+inline constexpr std::uint32_t padding_slot = 0xffffffffu;
+
 /// Optional: a structure whose leaves are ranges of `prim_ids` slots can hand a caller whole
 /// leaves, so the caller may store its primitive data in slot order (no id indirection in the hot
-/// loop) and test a leaf at once. `soa_leaves` says whether callers should.
+/// loop) and test a leaf at once. `soa_leaves` says whether callers should. prim_ids may hold
+/// padding_slot entries between leaves.
 template <class A>
 concept LeafRangeAccel = requires(const A& a, Rayf& ray, const Rayf& cray) {
     { a.prim_ids[0] } -> std::convertible_to<std::uint32_t>;

@@ -202,7 +202,9 @@ double flat_epo(const FlatBvh& f, std::span<const Trianglef> triangles, const Co
     };
     double total = 0;
     for (const std::uint32_t id : f.prim_ids) {
-        total += area(id);
+        if (id != padding_slot) {
+            total += area(id);
+        }
     }
     if (!(total > 0)) {
         return 0;

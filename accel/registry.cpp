@@ -209,9 +209,26 @@ const ParamSpec leaves = choice_param("leaves",
                                       "soa: tracers test whole leaves with SIMD kernels on "
                                       "slot-ordered data; ids: one primitive id at a time");
 
+// Leaves starting whole 4-slot groups of the SoA leaf data (accel/bvh/bvh.h align_leaf_slots):
+// session 13 measured bvh8 on the tessellated SF 4 (1.65M triangles, 20% more slots) shadow
+// 1.06x, diffuse 1.02-1.07x, primary 0.99-1.01x; analytic SF 4 primary 1.015x, diffuse 1.04x;
+// bvh:pair 1.00-1.035x (docs/results.md).
+const ParamSpec leaf_align = integer_param("leaf_align",
+                                           4,
+                                           1,
+                                           64,
+                                           "with leaves=soa, every leaf starts at a multiple of "
+                                           "this many slots (padding between leaves); 1 packs");
+
+/// The `from` builder's tree with its leaves aligned as the spec asks (only for SoA leaves).
+Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
+    const bool soa = s.value("leaves") == 0;
+    return align_leaf_slots(source_bvh(in, s), soa ? as_u32(s.value("leaf_align")) : 1);
+}
+
 /// The pair layout's row: the `from` builder's tree (spec's Config) in pair nodes.
 AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
-    PairBvh p = PairBvh::convert(source_bvh(in, s));
+    PairBvh p = PairBvh::convert(aligned_source(in, s));
     p.soa_leaves = s.value("leaves") == 0;
     return p;
 }
@@ -235,7 +252,7 @@ const ParamSpec pair_ct = with_default(bvh_ct, 8);
 /// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
 AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
-    WideBvh<N> w = collapse_bvh<N>(source_bvh(in, s));
+    WideBvh<N> w = collapse_bvh<N>(aligned_source(in, s));
     w.soa_leaves = s.value("leaves") == 0;
     return w;
 }
@@ -261,7 +278,7 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, leaves, pair_max_leaf, bins, pair_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, pair_max_leaf, bins, pair_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
@@ -273,11 +290,11 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
      &wide_row<4>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
      &wide_row<8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",

@@ -296,6 +296,64 @@ TEST_CASE("validate reports broken trees", "[accel][bvh]") {
     b = good;
     b.nodes[0].first = 0;  // cycle
     CHECK_FALSE(b.validate().empty());
+    // Aligned leaves: a leaf moved one slot back over the padding before it holds a padding slot
+    // and leaves its last slot in no leaf.
+    const Bvh aligned = align_leaf_slots(good, 4);
+    REQUIRE(aligned.validate().empty());
+    REQUIRE(aligned.prim_ids.size() > good.prim_ids.size());
+    b = aligned;
+    for (BvhNode& n : b.nodes) {
+        if (n.is_leaf() && n.first > 0 && b.prim_ids[n.first - 1] == padding_slot) {
+            --n.first;
+            break;
+        }
+    }
+    CHECK(b.validate().find("padding slot") != std::string::npos);
+    b = aligned;
+    b.prim_ids.push_back(b.prim_ids[0]);
+    CHECK_FALSE(b.validate().empty());
+}
+
+TEST_CASE("aligned leaf slots keep the tree, its leaves' order and its answers", "[accel][bvh]") {
+    const auto count = GENERATE(0u, 1u, 5u, 1000u);
+    const auto k = GENERATE(1u, 2u, 4u, 8u);
+    CAPTURE(count, k);
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, count);
+    const Bvh source = build_with(soup.boxes, "bvh:binned");
+    const Bvh a = align_leaf_slots(source, k);
+    REQUIRE(a.validate().empty());
+    REQUIRE(a.nodes.size() == source.nodes.size());
+    std::size_t leaves = 0;
+    std::vector<std::uint32_t> order_aligned;  // the ids in slot order, padding left out
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        const BvhNode &n = a.nodes[i], &s = source.nodes[i];
+        CHECK(n.bounds() == s.bounds());
+        CHECK(n.packed == s.packed);
+        if (!n.is_leaf()) {
+            CHECK(n.first == s.first);
+            continue;
+        }
+        ++leaves;
+        CHECK(n.first % k == 0);
+        for (std::uint32_t j = 0; j < n.prim_count(); ++j) {
+            CHECK(a.prim_ids[n.first + j] == source.prim_ids[s.first + j]);
+        }
+    }
+    for (const std::uint32_t id : a.prim_ids) {
+        if (id != padding_slot) {
+            order_aligned.push_back(id);
+        }
+    }
+    CHECK(order_aligned == source.prim_ids);
+    CHECK(a.prim_ids.size() <= source.prim_ids.size() + (k - 1) * leaves);
+    for (const Rayf& ray : test::random_rays(soup, 5, 200)) {
+        Hit x, y;
+        Rayf rx = ray, ry = ray;
+        CHECK(source.intersect(rx, soup.closest_hit(x)) == a.intersect(ry, soup.closest_hit(y)));
+        CHECK(x.t == y.t);
+        CHECK(x.prim == y.prim);
+        CHECK(source.occluded(ray, soup.any_hit()) == a.occluded(ray, soup.any_hit()));
+    }
 }
 
 TEST_CASE("closest-hit traversal visits the near child first", "[accel][bvh]") {
@@ -393,8 +451,10 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     CAPTURE(from, count);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);
     const Bvh source = build_with(soup.boxes, "bvh:" + from);
-    // The source's parameters (build_with: max_leaf 4, Ct 1), not the pair row's defaults.
-    const AnyAccel any = build_accel("bvh:pair,from=" + from + ",max_leaf=4,ct=1", soup.input());
+    // The source's parameters (build_with: max_leaf 4, Ct 1), not the pair row's defaults; leaves
+    // packed as the source's (the default aligns them: align_leaf_slots, tested below).
+    const AnyAccel any =
+        build_accel("bvh:pair,from=" + from + ",max_leaf=4,ct=1,leaf_align=1", soup.input());
     const PairBvh& pair = std::get<PairBvh>(any);
     REQUIRE(pair.validate().empty());
     CHECK(pair == PairBvh::convert(source));

@@ -46,8 +46,10 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                 set.slot_prims.reserve(a.prim_ids.size());
                 set.slot_ids.reserve(a.prim_ids.size());
                 for (const std::uint32_t id : a.prim_ids) {
-                    set.slot_prims.push_back(set.prims[id]);
-                    set.slot_ids.push_back(set.ids[id]);
+                    // A padding slot (in no leaf, never tested) repeats the first primitive.
+                    const std::uint32_t i = id == padding_slot ? a.prim_ids.front() : id;
+                    set.slot_prims.push_back(set.prims[i]);
+                    set.slot_ids.push_back(set.ids[i]);
                 }
             }
         }

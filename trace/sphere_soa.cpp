@@ -3,6 +3,7 @@
 
 #include "trace/sphere_soa.h"
 
+#include "accel/accel.h"
 #include "trace/sphere_soa_kernels.h"
 
 namespace rtlab {
@@ -15,6 +16,9 @@ SphereSoA make_sphere_soa(std::span<const PreparedSphere<float>> prims,
     const std::size_t groups = (slot_ids.size() + SphereSoA::group - 1) / SphereSoA::group;
     q.data.assign((groups + 1) * SphereSoA::group_floats, 0.0f);  // + the zero padding group
     for (std::size_t s = 0; s < slot_ids.size(); ++s) {
+        if (slot_ids[s] == padding_slot) {
+            continue;  // zeros: in no leaf, never tested
+        }
         const PreparedSphere<float>& p = prims[slot_ids[s]];
         float* const g = q.data.data() + s / SphereSoA::group * SphereSoA::group_floats;
         const std::size_t lane = s % SphereSoA::group;

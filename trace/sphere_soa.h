@@ -47,7 +47,7 @@ struct SphereSoA {
 };
 
 /// The spheres prims[slot_ids[s]] for every slot s, each with the id ids[slot_ids[s]]
-/// (slot_ids[s] itself when ids is empty).
+/// (slot_ids[s] itself when ids is empty); a padding_slot entry (accel/accel.h) stays zero.
 SphereSoA make_sphere_soa(std::span<const PreparedSphere<float>> prims,
                           std::span<const std::uint32_t> slot_ids,
                           std::span<const std::uint32_t> ids = {});

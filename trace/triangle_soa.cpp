@@ -3,6 +3,7 @@
 
 #include "trace/triangle_soa.h"
 
+#include "accel/accel.h"
 #include "trace/triangle_soa_kernels.h"
 
 #include <cassert>
@@ -65,6 +66,9 @@ TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepa
     const std::size_t groups = (slot_ids.size() + TriangleSoA::group - 1) / TriangleSoA::group;
     q.data.assign((groups + 1) * TriangleSoA::group_floats, 0.0f);  // + the zero padding group
     for (std::size_t s = 0; s < slot_ids.size(); ++s) {
+        if (slot_ids[s] == padding_slot) {
+            continue;  // zeros: in no leaf, never tested
+        }
         const auto& p = prims[slot_ids[s]];
         // The edges exactly as MollerTrumbore computes them.
         const Vec3f b = layout == SoaLayout::edges ? p.p1 - p.p0 : p.p1;

@@ -61,7 +61,8 @@ struct TriangleSoA {
 };
 
 /// The triangles prims[slot_ids[s]] for every slot s, in `layout`, each with the id
-/// ids[slot_ids[s]] (slot_ids[s] itself when ids is empty).
+/// ids[slot_ids[s]] (slot_ids[s] itself when ids is empty); a padding_slot entry (accel/accel.h)
+/// stays zero.
 TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepared> prims,
                               std::span<const std::uint32_t> slot_ids,
                               SoaLayout layout,

@@ -18,11 +18,22 @@
 namespace rtlab::bvh_detail {
 
 /// Empty when prim_ids references every usable primitive exactly once (ids < prim_count, none
-/// twice, prim_count - unreferenced_count of them); else the first violation. Shared by the
-/// validate() of every BVH layout.
+/// twice, prim_count - unreferenced_count of them, padding_slot entries aside); else the first
+/// violation. Shared by the validate() of every BVH layout.
 std::string check_prim_ids(std::span<const std::uint32_t> prim_ids,
                            std::uint32_t prim_count,
                            std::uint32_t unreferenced_count);
+
+/// Marks the slots of the leaf [first, first + count) in `used` (one flag per prim_ids slot);
+/// empty, or the first violation: a range outside prim_ids, a slot already used, a padding slot.
+std::string use_leaf_slots(std::span<const std::uint32_t> prim_ids,
+                           std::vector<char>& used,
+                           std::uint32_t first,
+                           std::uint32_t count);
+
+/// Empty when every slot that is no padding slot is in a leaf (`used`); else the violation.
+std::string check_slots_covered(std::span<const std::uint32_t> prim_ids,
+                                const std::vector<char>& used);
 
 /// Ranges at least this long are reduced (bounds, bins) in parallel blocks of `reduce_block`:
 /// the top nodes of an unbalanced tree (a floor split off a mesh) would otherwise run one thread

@@ -49,12 +49,17 @@ AccelInfo Bvh::info() const {
 std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
                                        std::uint32_t prim_count,
                                        std::uint32_t unreferenced_count) {
-    if (prim_ids.size() + unreferenced_count != prim_count) {
-        return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
+    const auto pads =
+        static_cast<std::size_t>(std::count(prim_ids.begin(), prim_ids.end(), padding_slot));
+    if (prim_ids.size() - pads + unreferenced_count != prim_count) {
+        return "prim_ids holds " + std::to_string(prim_ids.size() - pads) + " ids, expected " +
                std::to_string(prim_count - unreferenced_count);
     }
     std::vector<char> seen(prim_count, 0);
     for (const std::uint32_t id : prim_ids) {
+        if (id == padding_slot) {
+            continue;
+        }
         if (id >= prim_count) {
             return "primitive id " + std::to_string(id) + " out of range";
         }
@@ -64,6 +69,61 @@ std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
         seen[id] = 1;
     }
     return {};
+}
+
+std::string bvh_detail::use_leaf_slots(std::span<const std::uint32_t> prim_ids,
+                                       std::vector<char>& used,
+                                       std::uint32_t first,
+                                       std::uint32_t count) {
+    if (first > prim_ids.size() || count > prim_ids.size() - first) {
+        return "leaf range outside prim_ids";
+    }
+    for (std::uint32_t s = first; s < first + count; ++s) {
+        if (used[s]) {
+            return "prim_ids slot " + std::to_string(s) + " in two leaves";
+        }
+        if (prim_ids[s] == padding_slot) {
+            return "padding slot " + std::to_string(s) + " in a leaf";
+        }
+        used[s] = 1;
+    }
+    return {};
+}
+
+std::string bvh_detail::check_slots_covered(std::span<const std::uint32_t> prim_ids,
+                                            const std::vector<char>& used) {
+    for (std::size_t s = 0; s < prim_ids.size(); ++s) {
+        if (!used[s] && prim_ids[s] != padding_slot) {
+            return "prim_ids slot " + std::to_string(s) + " lies in no leaf";
+        }
+    }
+    return {};
+}
+
+Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
+    if (k <= 1 || bvh.nodes.empty()) {
+        return bvh;
+    }
+    std::vector<std::uint32_t> leaves;
+    for (std::uint32_t i = 0; i < bvh.nodes.size(); ++i) {
+        if (bvh.nodes[i].is_leaf()) {
+            leaves.push_back(i);
+        }
+    }
+    std::sort(leaves.begin(), leaves.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return bvh.nodes[a].first < bvh.nodes[b].first;
+    });
+    std::vector<std::uint32_t> ids;
+    ids.reserve(bvh.prim_ids.size() + (k - 1) * leaves.size());
+    for (const std::uint32_t l : leaves) {
+        BvhNode& n = bvh.nodes[l];
+        ids.resize((ids.size() + k - 1) / k * k, padding_slot);
+        const auto from = bvh.prim_ids.begin() + n.first;
+        n.first = static_cast<std::uint32_t>(ids.size());
+        ids.insert(ids.end(), from, from + n.prim_count());
+    }
+    bvh.prim_ids = std::move(ids);
+    return bvh;
 }
 
 std::string Bvh::validate() const {
@@ -102,14 +162,10 @@ std::string Bvh::validate() const {
             if (n.prim_count() > config.max_leaf_size) {
                 return where + "leaf of " + std::to_string(n.prim_count()) + " > max_leaf_size";
             }
-            if (n.first > prim_ids.size() || n.prim_count() > prim_ids.size() - n.first) {
-                return where + "leaf range outside prim_ids";
-            }
-            for (std::uint32_t s = n.first; s < n.first + n.prim_count(); ++s) {
-                if (slot_used[s]) {
-                    return where + "prim_ids slot " + std::to_string(s) + " in two leaves";
-                }
-                slot_used[s] = 1;
+            if (std::string e =
+                    bvh_detail::use_leaf_slots(prim_ids, slot_used, n.first, n.prim_count());
+                !e.empty()) {
+                return where + e;
             }
             continue;
         }
@@ -129,10 +185,7 @@ std::string Bvh::validate() const {
     if (visited != nodes.size()) {
         return std::to_string(nodes.size() - visited) + " nodes unreachable";
     }
-    if (std::find(slot_used.begin(), slot_used.end(), 0) != slot_used.end()) {
-        return "a prim_ids slot lies in no leaf";
-    }
-    return {};
+    return bvh_detail::check_slots_covered(prim_ids, slot_used);
 }
 
 }  // namespace rtlab

@@ -63,8 +63,8 @@ struct Bvh {
 
     /// Empty when every invariant holds (each usable primitive referenced exactly once, ids
     /// unique and < prim_count, children inside their parent, non-empty leaves of at most
-    /// max_leaf_size primitives, depth <= 64, every node reachable once); else the first
-    /// violation.
+    /// max_leaf_size primitives covering every slot but padding slots, depth <= 64, every node
+    /// reachable once); else the first violation.
     std::string validate() const;
 
     friend bool operator==(const Bvh&, const Bvh&) = default;
@@ -122,5 +122,11 @@ private:
 };
 
 static_assert(Accel<Bvh>);
+
+/// The same tree with every leaf's first prim_ids slot a multiple of `k` (k <= 1: unchanged):
+/// leaves keep their order and the slots between them hold padding_slot. With k the SIMD group of
+/// slot-ordered leaf data (4), a leaf's data starts a group and a leaf of up to 8 primitives is
+/// one 8-lane chunk of the leaf kernels instead of up to two.
+Bvh align_leaf_slots(Bvh bvh, std::uint32_t k);
 
 }  // namespace rtlab

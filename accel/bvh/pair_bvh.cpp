@@ -2,6 +2,8 @@
 
 #include "accel/bvh/pair_bvh.h"
 
+#include "accel/bvh/build_common.h"
+
 #include <algorithm>
 
 namespace rtlab {
@@ -100,16 +102,9 @@ AccelInfo PairBvh::info() const {
 }
 
 std::string PairBvh::validate() const {
-    if (prim_ids.size() + unreferenced_count != prim_count) {
-        return "prim_ids holds " + std::to_string(prim_ids.size()) + " ids, expected " +
-               std::to_string(prim_count - unreferenced_count);
-    }
-    std::vector<char> seen(prim_count, 0);
-    for (const std::uint32_t id : prim_ids) {
-        if (id >= prim_count || seen[id]) {
-            return "primitive id " + std::to_string(id) + " out of range or repeated";
-        }
-        seen[id] = 1;
+    if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
+        !e.empty()) {
+        return e;
     }
     if (prim_ids.empty()) {
         return nodes.empty() ? std::string{} : "nodes but no primitives";
@@ -119,16 +114,7 @@ std::string PairBvh::validate() const {
         if (count > max_leaf_size) {
             return "leaf of " + std::to_string(count) + " > max_leaf_size";
         }
-        if (first > prim_ids.size() || count > prim_ids.size() - first) {
-            return "leaf range outside prim_ids";
-        }
-        for (std::uint32_t s = first; s < first + count; ++s) {
-            if (slot_used[s]) {
-                return "prim_ids slot " + std::to_string(s) + " in two leaves";
-            }
-            slot_used[s] = 1;
-        }
-        return {};
+        return bvh_detail::use_leaf_slots(prim_ids, slot_used, first, count);
     };
     if (root_count > 0) {
         if (!nodes.empty()) {
@@ -177,10 +163,7 @@ std::string PairBvh::validate() const {
             return std::to_string(nodes.size() - visited) + " nodes unreachable";
         }
     }
-    if (std::find(slot_used.begin(), slot_used.end(), 0) != slot_used.end()) {
-        return "a prim_ids slot lies in no leaf";
-    }
-    return {};
+    return bvh_detail::check_slots_covered(prim_ids, slot_used);
 }
 
 }  // namespace rtlab

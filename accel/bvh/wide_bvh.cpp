@@ -116,14 +116,9 @@ std::string WideBvh<N>::validate() const {
                 if (count > config.max_leaf_size) {
                     return slot + "leaf of " + std::to_string(count) + " > max_leaf_size";
                 }
-                if (first > prim_ids.size() || count > prim_ids.size() - first) {
-                    return slot + "leaf range outside prim_ids";
-                }
-                for (std::uint32_t s = first; s < first + count; ++s) {
-                    if (slot_used[s]) {
-                        return slot + "prim_ids slot " + std::to_string(s) + " in two leaves";
-                    }
-                    slot_used[s] = 1;
+                if (std::string e = bvh_detail::use_leaf_slots(prim_ids, slot_used, first, count);
+                    !e.empty()) {
+                    return slot + e;
                 }
             } else {
                 if (n.child[i] <= it.node || n.child[i] >= nodes.size()) {
@@ -139,10 +134,7 @@ std::string WideBvh<N>::validate() const {
     if (visited != nodes.size()) {
         return std::to_string(nodes.size() - visited) + " nodes unreachable";
     }
-    if (std::find(slot_used.begin(), slot_used.end(), 0) != slot_used.end()) {
-        return "a prim_ids slot lies in no leaf";
-    }
-    return {};
+    return bvh_detail::check_slots_covered(prim_ids, slot_used);
 }
 
 template struct WideBvh<4>;

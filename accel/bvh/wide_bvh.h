@@ -71,9 +71,9 @@ struct WideBvh {
     AccelInfo info() const;
 
     /// Empty when every invariant holds (each usable primitive referenced once, leaves of at
-    /// most max_leaf_size primitives covering prim_ids exactly, occupied slots first with
-    /// non-empty boxes, every child box inside its parent slot's box, inner nodes other than the
-    /// root with at least two children, every node reached once, depth <= 64); else the first
+    /// most max_leaf_size primitives covering every slot but padding slots, occupied slots first
+    /// with non-empty boxes, every child box inside its parent slot's box, inner nodes other than
+    /// the root with at least two children, every node reached once, depth <= 64); else the first
     /// violation.
     std::string validate() const;
 
