@@ -6,7 +6,8 @@
 //       <methods> is "default" (each family's default method) or "watertight" (the watertight
 //       triangle test, with robust traversal: the issue's watertight row). Counters: rays/s,
 //       nodes/ray and prims/ray (a separate counting pass), bytes/prim (structure) and
-//       leaf_bytes/prim (the method's prepared primitives and 4-byte id maps), build_ms, prims.
+//       leaf_bytes/prim (SceneTracer::leaf_bytes: the primitive data traversal reads), build_ms,
+//       prims.
 //   issue12/build/<spec>/<scene>/threads:<k>  build time of the row from the scene's triangle
 //       bounds, TBB limited to k threads; build_ms is the median of the timed builds.
 // Scenes: flake_meshfloor4 (SF 4 tessellated uv:16x8 with the floor as two triangles, 1.65M
@@ -15,8 +16,6 @@
 #include "accel/any_accel.h"
 #include "bench/benchmarks.h"
 #include "bench/trace_fixture.h"
-#include "intersect/sphere/methods.h"
-#include "intersect/triangle/methods.h"
 
 #include <benchmark/benchmark.h>
 
@@ -25,7 +24,6 @@
 #include <memory>
 #include <string>
 #include <tbb/global_control.h>
-#include <tuple>
 #include <vector>
 
 namespace rtlab::bench {
@@ -55,21 +53,6 @@ using namespace rtlab;
 using namespace rtlab::bench;
 
 constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
-
-/// Bytes of the leaf data the tracer keeps beside the structure for scene s: one Prepared
-/// record per primitive of the method in use, and a 4-byte global id each.
-double leaf_bytes(const Scene& s, bool watertight) {
-    using Tri = std::tuple_element_t<0, TriangleMethods<float>>;
-    using Sph = std::tuple_element_t<0, SphereMethods<float>>;
-    std::size_t tris = 0;
-    for (const MeshObject& m : s.meshes) {
-        tris += m.mesh.triangle_count();
-    }
-    const std::size_t tri_bytes =
-        watertight ? sizeof(Watertight<float>::Prepared) : sizeof(Tri::Prepared);
-    return static_cast<double>(tris * (tri_bytes + 4) +
-                               s.spheres.size() * (sizeof(Sph::Prepared) + 4));
-}
 
 /// The structures of the suite: the BVH-family rows of bench_specs().
 std::vector<std::string> layout_specs() {
@@ -126,8 +109,7 @@ void bm_trace(benchmark::State& state, TracerKey key, RayKind kind, int threads)
     state.counters["build_ms"] = t.build_ms();
     state.counters["prims"] = prims;
     state.counters["bytes/prim"] = bytes / prims;
-    state.counters["leaf_bytes/prim"] =
-        leaf_bytes(bench_scene(key.scene).scene, key.watertight) / prims;
+    state.counters["leaf_bytes/prim"] = static_cast<double>(t.leaf_bytes()) / prims;
 }
 
 void bm_build(benchmark::State& state, std::string accel, std::string scene, int threads) {

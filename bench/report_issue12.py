@@ -169,7 +169,8 @@ class Issue12:
                 out.append(f"| {short(a)} | " + " | ".join(cells) + " |")
             out.append("")
         out += [f"Memory per triangle on {self.mesh}: structure (nodes and index lists) plus leaf "
-                "data (the method's prepared triangles and the 4-byte id map the tracer keeps); "
+                "data (what traversal reads beside the nodes: SIMD leaf blocks with their ids, "
+                "padding slots included, or prepared triangles and the 4-byte id map); "
                 "Embree: every byte its memory monitor saw for the scene (its vertex and index "
                 "copies and the BVH with its leaf triangles). Build: median of 5 builds from "
                 "the triangle boxes (ours) or of rtcCommitScene (Embree).", "",

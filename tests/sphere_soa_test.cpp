@@ -293,7 +293,8 @@ TEST_CASE("sphere leaf kernels inlined into wide BVH traversal give the leaf-cal
 struct Traced {
     std::vector<Hit> hits;
     std::vector<std::uint32_t> blockers;
-    std::size_t soa_slots = 0;  ///< slots of the sphere set's SphereSoA (0: another path)
+    std::size_t soa_slots = 0;   ///< slots of the sphere set's SphereSoA (0: another path)
+    std::size_t leaf_bytes = 0;  ///< SceneTracer::leaf_bytes
 };
 Traced trace(const Scene& scene, const std::vector<Rayf>& rays, const std::string& spec) {
     const SceneTracer tracer(scene, TraceSetup{spec, {"stable"}, false});
@@ -307,6 +308,7 @@ Traced trace(const Scene& scene, const std::vector<Rayf>& rays, const std::strin
             },
             set);
     }
+    t.leaf_bytes = tracer.leaf_bytes();
     t.hits.resize(rays.size());
     t.blockers.resize(rays.size());
     tracer.intersect(rays, t.hits);
@@ -333,6 +335,11 @@ TEST_CASE("SceneTracer traces spheres on bvh4/bvh8 through the SphereSoA like th
         const Traced soa = trace(scene, rays, spec);
         CHECK(ids.soa_slots == 0);
         CHECK(soa.soa_slots >= prims.size());  // the leaf kernel path is taken
+        // Leaf data: the prepared spheres and the id map, or the blocks (padding slots and the
+        // zero group included).
+        CHECK(ids.leaf_bytes == prims.size() * (sizeof(Prepared) + sizeof(std::uint32_t)));
+        CHECK(soa.leaf_bytes ==
+              ((soa.soa_slots + 3) / 4 + 1) * SphereSoA::group_floats * sizeof(float));
         std::size_t hit = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) {
             CAPTURE(i);

@@ -199,6 +199,28 @@ std::vector<AccelInfo> SceneTracer::infos() const {
     return out;
 }
 
+std::size_t SceneTracer::leaf_bytes() const {
+    std::size_t total = 0;
+    for (const AnyPrimSet& s : sets_) {
+        total += std::visit(
+            [](const auto& set) -> std::size_t {
+                if constexpr (requires { set.soa.data; }) {
+                    if (set.soa.size() > 0) {
+                        return set.soa.data.size() * sizeof(set.soa.data[0]);
+                    }
+                }
+                if (!set.slot_prims.empty()) {
+                    return set.slot_prims.size() * sizeof(set.slot_prims[0]) +
+                           set.slot_ids.size() * sizeof(std::uint32_t);
+                }
+                return set.prims.size() * sizeof(set.prims[0]) +
+                       set.ids.size() * sizeof(std::uint32_t);
+            },
+            s);
+    }
+    return total;
+}
+
 void SceneTracer::intersect(std::span<const Rayf> rays,
                             std::span<Hit> hits,
                             TraversalStats* stats) const {

@@ -60,6 +60,10 @@ public:
     const std::vector<std::string>& set_methods() const { return set_methods_; }
     /// Info of every set's structure (set order as set_methods()).
     std::vector<AccelInfo> infos() const;
+    /// Bytes of the primitive data traversal reads beside the structures, over all sets: a set's
+    /// SIMD leaf blocks (padding slots included) when it has them, else its primitives copied
+    /// into slot order with their ids, else its prepared primitives with the global id map.
+    std::size_t leaf_bytes() const;
     /// The one cost model's expected counts (accel/cost_model.h) of every set's structure, and
     /// with_epo the end-point overlap of a BVH over the triangle set (-1 for other sets and
     /// structures; slow: clips triangles against every node), set order as set_methods().
