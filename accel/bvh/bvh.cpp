@@ -1,10 +1,14 @@
-// Bvh: size and SAH figures, and the invariant check.
+// Bvh: size and SAH figures, the invariant check, and leaf slot alignment.
 
 #include "accel/bvh/bvh.h"
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
+#include <functional>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_scan.h>
 #include <vector>
 
 namespace rtlab {
@@ -104,24 +108,45 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     if (k <= 1 || bvh.nodes.empty()) {
         return bvh;
     }
-    std::vector<std::uint32_t> leaves;
-    for (std::uint32_t i = 0; i < bvh.nodes.size(); ++i) {
-        if (bvh.nodes[i].is_leaf()) {
-            leaves.push_back(i);
-        }
-    }
-    std::sort(leaves.begin(), leaves.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return bvh.nodes[a].first < bvh.nodes[b].first;
+    // Leaves in slot order each take their count rounded up to k slots, so a leaf's new first
+    // slot is its old one plus the padding of the leaves before it: an exclusive prefix sum of
+    // each leaf's padding, stored at its first slot (parallel, as the rest: the wide layouts'
+    // two-thread builds must keep scaling).
+    const std::size_t n = bvh.prim_ids.size();
+    const std::size_t node_count = bvh.nodes.size();
+    std::vector<std::uint32_t> pad(n, 0), before(n, 0);
+    const auto leaves = [&](auto&& f) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, node_count, 4096),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  if (bvh.nodes[i].is_leaf()) {
+                                      f(bvh.nodes[i]);
+                                  }
+                              }
+                          });
+    };
+    leaves([&](const BvhNode& l) {
+        const std::uint32_t c = l.prim_count();
+        pad[l.first] = (c + k - 1) / k * k - c;
     });
-    std::vector<std::uint32_t> ids;
-    ids.reserve(bvh.prim_ids.size() + (k - 1) * leaves.size());
-    for (const std::uint32_t l : leaves) {
-        BvhNode& n = bvh.nodes[l];
-        ids.resize((ids.size() + k - 1) / k * k, padding_slot);
-        const auto from = bvh.prim_ids.begin() + n.first;
-        n.first = static_cast<std::uint32_t>(ids.size());
-        ids.insert(ids.end(), from, from + n.prim_count());
-    }
+    const std::uint32_t total = tbb::parallel_scan(
+        tbb::blocked_range<std::size_t>(0, n, 16384), 0u,
+        [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t sum, bool is_final) {
+            for (std::size_t s = r.begin(); s != r.end(); ++s) {
+                if (is_final) {
+                    before[s] = sum;
+                }
+                sum += pad[s];
+            }
+            return sum;
+        },
+        std::plus<>());
+    std::vector<std::uint32_t> ids(n + total, padding_slot);
+    leaves([&](BvhNode& l) {
+        const auto from = bvh.prim_ids.begin() + l.first;
+        l.first += before[l.first];
+        std::copy(from, from + l.prim_count(), ids.begin() + l.first);
+    });
     bvh.prim_ids = std::move(ids);
     return bvh;
 }
