@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_scan.h>
@@ -114,29 +115,38 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     // two-thread builds must keep scaling).
     const std::size_t n = bvh.prim_ids.size();
     const std::size_t node_count = bvh.nodes.size();
-    std::vector<std::uint32_t> pad(n, 0), before(n, 0);
-    const auto leaves = [&](auto&& f) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, node_count, 4096),
+    const auto blocks = [&](std::size_t size, std::size_t grain, auto&& f) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, grain),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  if (bvh.nodes[i].is_leaf()) {
-                                      f(bvh.nodes[i]);
-                                  }
+                                  f(i);
                               }
                           });
     };
+    const auto leaves = [&](auto&& f) {
+        blocks(node_count, 4096, [&](std::size_t i) {
+            if (bvh.nodes[i].is_leaf()) {
+                f(bvh.nodes[i]);
+            }
+        });
+    };
+    // Uninitialised and filled in parallel: this runs inside the wide and pair layouts' builds.
+    const std::unique_ptr<std::uint32_t[]> shift(new std::uint32_t[n]);
+    blocks(n, 16384, [&](std::size_t s) { shift[s] = 0; });
     leaves([&](const BvhNode& l) {
         const std::uint32_t c = l.prim_count();
-        pad[l.first] = (c + k - 1) / k * k - c;
+        shift[l.first] = (c + k - 1) / k * k - c;
     });
+    // In place: each block's final pass reads a slot's padding before writing its prefix.
     const std::uint32_t total = tbb::parallel_scan(
         tbb::blocked_range<std::size_t>(0, n, 16384), 0u,
         [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t sum, bool is_final) {
             for (std::size_t s = r.begin(); s != r.end(); ++s) {
+                const std::uint32_t p = shift[s];
                 if (is_final) {
-                    before[s] = sum;
+                    shift[s] = sum;
                 }
-                sum += pad[s];
+                sum += p;
             }
             return sum;
         },
@@ -144,7 +154,7 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     std::vector<std::uint32_t> ids(n + total, padding_slot);
     leaves([&](BvhNode& l) {
         const auto from = bvh.prim_ids.begin() + l.first;
-        l.first += before[l.first];
+        l.first += shift[l.first];
         std::copy(from, from + l.prim_count(), ids.begin() + l.first);
     });
     bvh.prim_ids = std::move(ids);
