@@ -14,15 +14,6 @@ namespace rtlab::bvh_detail {
 
 namespace {
 
-/// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
-template <class F>
-void for_blocks(std::size_t n, const F& f) {
-    const std::size_t blocks = (n + reduce_block - 1) / reduce_block;
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-        f(k, k * reduce_block, std::min(n, (k + 1) * reduce_block));
-    });
-}
-
 /// start[k] = how many i below block k's first index satisfy pred(i), for every block of
 /// for_blocks and one past the last (the total): where block k's selected indices go when they
 /// are packed in order. The same for any thread count.

@@ -7,10 +7,13 @@
 #include "base/scratch_vector.h"
 #include "base/thread_arena.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
@@ -40,6 +43,15 @@ std::string check_slots_covered(std::span<const std::uint32_t> prim_ids,
 /// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.
 inline constexpr std::uint32_t reduce_min = 1u << 16;
 inline constexpr std::uint32_t reduce_block = 1u << 14;
+
+/// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
+template <class F>
+void for_blocks(std::size_t n, const F& f) {
+    const std::size_t blocks = (n + reduce_block - 1) / reduce_block;
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+        f(k, k * reduce_block, std::min<std::size_t>(n, (k + 1) * reduce_block));
+    });
+}
 
 /// ceil(log2(n)) for n >= 1 (0 for n = 1).
 std::uint32_t ceil_log2(std::uint64_t n);

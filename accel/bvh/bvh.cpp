@@ -8,7 +8,6 @@
 #include <functional>
 #include <memory>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_scan.h>
 #include <vector>
 
@@ -114,32 +113,27 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     // each leaf's padding, stored at its first slot (parallel, as the rest: the wide layouts'
     // two-thread builds must keep scaling).
     const std::size_t n = bvh.prim_ids.size();
-    const std::size_t node_count = bvh.nodes.size();
-    const auto blocks = [&](std::size_t size, std::size_t grain, auto&& f) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, grain),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  f(i);
-                              }
-                          });
-    };
     const auto leaves = [&](auto&& f) {
-        blocks(node_count, 4096, [&](std::size_t i) {
-            if (bvh.nodes[i].is_leaf()) {
-                f(bvh.nodes[i]);
+        bvh_detail::for_blocks(bvh.nodes.size(), [&](std::size_t, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                if (bvh.nodes[i].is_leaf()) {
+                    f(bvh.nodes[i]);
+                }
             }
         });
     };
     // Uninitialised and filled in parallel: this runs inside the wide and pair layouts' builds.
     const std::unique_ptr<std::uint32_t[]> shift(new std::uint32_t[n]);
-    blocks(n, 16384, [&](std::size_t s) { shift[s] = 0; });
+    bvh_detail::for_blocks(n, [&](std::size_t, std::size_t lo, std::size_t hi) {
+        std::fill(shift.get() + lo, shift.get() + hi, 0u);
+    });
     leaves([&](const BvhNode& l) {
         const std::uint32_t c = l.prim_count();
         shift[l.first] = (c + k - 1) / k * k - c;
     });
     // In place: each block's final pass reads a slot's padding before writing its prefix.
     const std::uint32_t total = tbb::parallel_scan(
-        tbb::blocked_range<std::size_t>(0, n, 16384), 0u,
+        tbb::blocked_range<std::size_t>(0, n, bvh_detail::reduce_block), 0u,
         [&](const tbb::blocked_range<std::size_t>& r, std::uint32_t sum, bool is_final) {
             for (std::size_t s = r.begin(); s != r.end(); ++s) {
                 const std::uint32_t p = shift[s];
