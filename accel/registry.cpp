@@ -244,10 +244,12 @@ ParamSpec with_default(ParamSpec p, double value) {
 const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
 const ParamSpec wide_ct = with_default(bvh_ct, 4);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
-// on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10,
-// docs/results.md), so its source trees default to those.
-const ParamSpec pair_max_leaf = with_default(max_leaf, 16);
-const ParamSpec pair_ct = with_default(bvh_ct, 8);
+// on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10); 32 bins,
+// leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that on the tessellated SF 4 and
+// 1.02x on the analytic one, and build 10% faster (fewer nodes; session 14, docs/results.md).
+const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
+const ParamSpec pair_bins = with_default(bins, 32);
+const ParamSpec pair_ct = with_default(bvh_ct, 16);
 
 /// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
 template <unsigned N>
@@ -278,7 +280,7 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, leaves, leaf_align, pair_max_leaf, bins, pair_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits, threads},
      &pair_row},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",

@@ -452,10 +452,11 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     CAPTURE(from, count);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);
     const Bvh source = build_with(soup.boxes, "bvh:" + from);
-    // The source's parameters (build_with: max_leaf 4, Ct 1), not the pair row's defaults; leaves
-    // packed as the source's (the default aligns them: align_leaf_slots, tested below).
-    const AnyAccel any =
-        build_accel("bvh:pair,from=" + from + ",max_leaf=4,ct=1,leaf_align=1", soup.input());
+    // The source's parameters (build_with: max_leaf 4, Ct 1, 16 bins), not the pair row's
+    // defaults; leaves packed as the source's (the default aligns them: align_leaf_slots, tested
+    // below).
+    const AnyAccel any = build_accel(
+        "bvh:pair,from=" + from + ",max_leaf=4,ct=1,bins=16,leaf_align=1", soup.input());
     const PairBvh& pair = std::get<PairBvh>(any);
     REQUIRE(pair.validate().empty());
     CHECK(pair == PairBvh::convert(source));
