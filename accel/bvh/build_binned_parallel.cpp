@@ -14,6 +14,7 @@
 
 #include "accel/bvh/binned_refs.h"
 #include "accel/bvh/build_common.h"
+#include "base/scratch_vector.h"
 #include "base/thread_arena.h"
 
 #include <algorithm>
@@ -106,8 +107,8 @@ private:
 
     Bvh::Config config_;
     std::span<const Bounds3f> boxes_;
-    std::vector<PrimRef> refs_;
-    std::vector<PrimRef> scratch_;  // partition buffer for the parallel passes
+    LargeScratchVector<PrimRef> refs_;     // filled by collect()'s blocks
+    LargeScratchVector<PrimRef> scratch_;  // partition buffer for the parallel passes
 
     /// The usable primitives as references, in id order, with the root box and centroid bounds.
     Range collect() {
