@@ -245,8 +245,9 @@ const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
 const ParamSpec wide_ct = with_default(bvh_ct, 4);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
 // on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10); 32 bins,
-// leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that on the tessellated SF 4 and
-// 1.02x on the analytic one, and build 10% faster (fewer nodes; session 14, docs/results.md).
+// leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that over 262,144 rays on the
+// tessellated SF 4 and 1.01-1.03x on the analytic SF 4/5, within 1% over the issue 12 bench's
+// 16,384, and build 10% faster (fewer nodes; session 14, docs/results.md).
 const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
 const ParamSpec pair_bins = with_default(bins, 32);
 const ParamSpec pair_ct = with_default(bvh_ct, 16);
