@@ -53,13 +53,8 @@ AccelInfo Bvh::info() const {
 std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
                                        std::uint32_t prim_count,
                                        std::uint32_t unreferenced_count) {
-    const auto pads =
-        static_cast<std::size_t>(std::count(prim_ids.begin(), prim_ids.end(), padding_slot));
-    if (prim_ids.size() - pads + unreferenced_count != prim_count) {
-        return "prim_ids holds " + std::to_string(prim_ids.size() - pads) + " ids, expected " +
-               std::to_string(prim_count - unreferenced_count);
-    }
     std::vector<char> seen(prim_count, 0);
+    std::size_t ids = 0;  // slots other than padding
     for (const std::uint32_t id : prim_ids) {
         if (id == padding_slot) {
             continue;
@@ -71,6 +66,11 @@ std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
             return "primitive " + std::to_string(id) + " referenced twice";
         }
         seen[id] = 1;
+        ++ids;
+    }
+    if (ids + unreferenced_count != prim_count) {
+        return "prim_ids holds " + std::to_string(ids) + " ids, expected " +
+               std::to_string(prim_count - unreferenced_count);
     }
     return {};
 }
