@@ -6,6 +6,7 @@
 
 #include "accel/bvh/wide_bvh.h"
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -13,31 +14,51 @@ namespace rtlab {
 
 namespace {
 
-/// The binary nodes that become the children of the wide node for binary node `b`.
+/// The binary nodes that become the children of a wide node, at most N (no heap: this runs once
+/// per wide node, serially).
 template <unsigned N>
-std::vector<std::uint32_t> wide_children(const Bvh& bvh, std::uint32_t b) {
+struct Kids {
+    std::array<std::uint32_t, N> node{};
+    std::array<float, N> area{};  ///< surface area of an inner kid; -1 for a leaf
+    unsigned size = 0;
+
+    /// Kid i becomes binary node b.
+    void set(const Bvh& bvh, unsigned i, std::uint32_t b) {
+        const BvhNode& k = bvh.nodes[b];
+        node[i] = b;
+        area[i] = k.is_leaf() ? -1.0f : k.bounds().surface_area();
+    }
+    void add(const Bvh& bvh, std::uint32_t b) { set(bvh, size++, b); }
+};
+
+/// The kids of the wide node for binary node `b`: its two children, then the inner kid of
+/// largest surface area opened (replaced by its first child, its second appended) until there
+/// are N or only leaves (ties keep the first).
+template <unsigned N>
+Kids<N> wide_children(const Bvh& bvh, std::uint32_t b) {
+    Kids<N> kids;
     const BvhNode& node = bvh.nodes[b];
     if (node.is_leaf()) {
-        return {b};  // only for the root: a wide root holding the single leaf
+        kids.add(bvh, b);  // only for the root: a wide root holding the single leaf
+        return kids;
     }
-    std::vector<std::uint32_t> kids{node.first, node.first + 1};
-    while (kids.size() < N) {
-        std::size_t best = kids.size();
+    kids.add(bvh, node.first);
+    kids.add(bvh, node.first + 1);
+    while (kids.size < N) {
+        unsigned best = kids.size;
         float best_area = -1.0f;
-        for (std::size_t i = 0; i < kids.size(); ++i) {
-            const BvhNode& k = bvh.nodes[kids[i]];
-            const float area = k.bounds().surface_area();
-            if (!k.is_leaf() && area > best_area) {
+        for (unsigned i = 0; i < kids.size; ++i) {
+            if (kids.area[i] > best_area) {
                 best = i;
-                best_area = area;
+                best_area = kids.area[i];
             }
         }
-        if (best == kids.size()) {
+        if (best == kids.size) {
             break;  // only leaves left
         }
-        const std::uint32_t opened = bvh.nodes[kids[best]].first;
-        kids[best] = opened;
-        kids.push_back(opened + 1);
+        const std::uint32_t opened = bvh.nodes[kids.node[best]].first;
+        kids.set(bvh, best, opened);
+        kids.add(bvh, opened + 1);
     }
     return kids;
 }
@@ -60,16 +81,16 @@ WideBvh<N> collapse_bvh(const Bvh& bvh) {
     while (!todo.empty()) {
         const auto [b, wi] = todo.back();
         todo.pop_back();
-        const std::vector<std::uint32_t> kids = wide_children<N>(bvh, b);
-        for (unsigned i = 0; i < kids.size(); ++i) {
-            const BvhNode& k = bvh.nodes[kids[i]];
+        const Kids<N> kids = wide_children<N>(bvh, b);
+        for (unsigned i = 0; i < kids.size; ++i) {
+            const BvhNode& k = bvh.nodes[kids.node[i]];
             if (k.is_leaf()) {
                 w.nodes[wi].set(i, k.bounds(), k.first, k.prim_count());
             } else {
                 const auto child = static_cast<std::uint32_t>(w.nodes.size());
                 w.nodes.push_back(WideNode<N>::empty());
                 w.nodes[wi].set(i, k.bounds(), child, 0);
-                todo.emplace_back(kids[i], child);
+                todo.emplace_back(kids.node[i], child);
             }
         }
     }
