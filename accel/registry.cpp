@@ -4,6 +4,7 @@
 // its own accel/<kind>/build_<name>.cpp with one free function, declared and listed here.
 
 #include "accel/any_accel.h"
+#include "base/thread_arena.h"
 
 #include <stdexcept>
 
@@ -226,11 +227,14 @@ Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
     return align_leaf_slots(source_bvh(in, s), soa ? as_u32(s.value("leaf_align")) : 1);
 }
 
-/// The pair layout's row: the `from` builder's tree (spec's Config) in pair nodes.
+/// The pair layout's row: the `from` builder's tree (spec's Config) in pair nodes; the whole
+/// row (build, alignment, conversion) on the spec's `threads`.
 AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
-    PairBvh p = PairBvh::convert(aligned_source(in, s));
-    p.soa_leaves = s.value("leaves") == 0;
-    return p;
+    return with_threads(threads_of(s), [&]() -> AnyAccel {
+        PairBvh p = PairBvh::convert(aligned_source(in, s));
+        p.soa_leaves = s.value("leaves") == 0;
+        return p;
+    });
 }
 
 // The wide layouts' source trees default to larger leaves: their SIMD leaf kernel tests up to 8
@@ -252,12 +256,15 @@ const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
 const ParamSpec pair_bins = with_default(bins, 32);
 const ParamSpec pair_ct = with_default(bvh_ct, 16);
 
-/// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children.
+/// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children; the
+/// whole row on the spec's `threads`.
 template <unsigned N>
 AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
-    WideBvh<N> w = collapse_bvh<N>(aligned_source(in, s));
-    w.soa_leaves = s.value("leaves") == 0;
-    return w;
+    return with_threads(threads_of(s), [&]() -> AnyAccel {
+        WideBvh<N> w = collapse_bvh<N>(aligned_source(in, s));
+        w.soa_leaves = s.value("leaves") == 0;
+        return w;
+    });
 }
 
 AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {

@@ -2,12 +2,13 @@
 // children and repeatedly opens the inner child of largest surface area (the one a random ray
 // reaches most often, so opening it saves the most node visits under the SAH) until it holds N
 // children or only leaves (greedy SAH collapse as in Wald, Benthin & Boulos 2008 and Embree's
-// BVH4/8 builders). Leaves and their prim_ids slots are kept as the binary build made them.
+// BVH4/8 builders). Leaves and their prim_ids slots are kept as the binary build made them. The
+// subtrees below the top levels are collapsed in parallel (TBB), the same nodes for any threads.
 
 #include "accel/bvh/wide_bvh.h"
 
 #include <array>
-#include <utility>
+#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab {
@@ -63,6 +64,41 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b) {
     return kids;
 }
 
+/// A wide node still to fill from the kids of binary node b, at wide depth `depth`.
+struct Item {
+    std::uint32_t b, wi, depth;
+};
+
+/// Fills wide nodes depth-first from `todo`, appending a fresh wide node to `nodes` for every
+/// inner kid; with `pending`, items at wide depth `stop` go there unfilled instead.
+template <unsigned N>
+void fill(const Bvh& bvh,
+          std::vector<Item> todo,
+          LargeVector<WideNode<N>>& nodes,
+          std::uint32_t stop,
+          std::vector<Item>* pending) {
+    while (!todo.empty()) {
+        const Item it = todo.back();
+        todo.pop_back();
+        if (pending != nullptr && it.depth == stop) {
+            pending->push_back(it);
+            continue;
+        }
+        const Kids<N> kids = wide_children<N>(bvh, it.b);
+        for (unsigned i = 0; i < kids.size; ++i) {
+            const BvhNode& k = bvh.nodes[kids.node[i]];
+            if (k.is_leaf()) {
+                nodes[it.wi].set(i, k.bounds(), k.first, k.prim_count());
+            } else {
+                const auto child = static_cast<std::uint32_t>(nodes.size());
+                nodes.push_back(WideNode<N>::empty());
+                nodes[it.wi].set(i, k.bounds(), child, 0);
+                todo.push_back({kids.node[i], child, it.depth + 1});
+            }
+        }
+    }
+}
+
 }  // namespace
 
 template <unsigned N>
@@ -75,25 +111,39 @@ WideBvh<N> collapse_bvh(const Bvh& bvh) {
     if (bvh.nodes.empty()) {
         return w;
     }
-    // Depth-first: (binary node, wide node) pairs still to fill.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, 0}};
+    // The top levels serially, down to the wide depth with up to 64 nodes (N^depth); each subtree
+    // below is collapsed by its own task into its own chunk, whose node 0 is the subtree's root.
+    // The split depends on the tree only, so any thread count gives the same nodes.
+    constexpr std::uint32_t task_depth = N == 8 ? 2 : 3;
     w.nodes.push_back(WideNode<N>::empty());
-    while (!todo.empty()) {
-        const auto [b, wi] = todo.back();
-        todo.pop_back();
-        const Kids<N> kids = wide_children<N>(bvh, b);
-        for (unsigned i = 0; i < kids.size; ++i) {
-            const BvhNode& k = bvh.nodes[kids.node[i]];
-            if (k.is_leaf()) {
-                w.nodes[wi].set(i, k.bounds(), k.first, k.prim_count());
-            } else {
-                const auto child = static_cast<std::uint32_t>(w.nodes.size());
-                w.nodes.push_back(WideNode<N>::empty());
-                w.nodes[wi].set(i, k.bounds(), child, 0);
-                todo.emplace_back(kids.node[i], child);
-            }
-        }
+    std::vector<Item> pending;
+    fill<N>(bvh, {{0, 0, 0}}, w.nodes, task_depth, &pending);
+    std::vector<LargeVector<WideNode<N>>> chunks(pending.size());
+    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
+        chunks[k].push_back(WideNode<N>::empty());
+        fill<N>(bvh, {{pending[k].b, 0, 0}}, chunks[k], 0, nullptr);
+    });
+    // Chunk k's node 0 fills its placeholder pending[k].wi, its node j >= 1 lands at
+    // base[k] + j - 1 (inner child links renumbered the same way).
+    std::vector<std::size_t> base(pending.size() + 1, w.nodes.size());
+    for (std::size_t k = 0; k < pending.size(); ++k) {
+        base[k + 1] = base[k] + chunks[k].size() - 1;
     }
+    w.nodes.resize(base.back());
+    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
+        const auto placed = [&](WideNode<N> n) {
+            for (unsigned i = 0; i < N; ++i) {
+                if (n.occupied(i) && n.count[i] == 0) {
+                    n.child[i] = static_cast<std::uint32_t>(base[k] + n.child[i] - 1);
+                }
+            }
+            return n;
+        };
+        w.nodes[pending[k].wi] = placed(chunks[k][0]);
+        for (std::size_t j = 1; j < chunks[k].size(); ++j) {
+            w.nodes[base[k] + j - 1] = placed(chunks[k][j]);
+        }
+    });
     return w;
 }
 
