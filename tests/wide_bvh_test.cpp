@@ -161,6 +161,22 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
     }
 }
 
+TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") {
+    // Deep enough that the subtrees below the serial top levels are collapsed by parallel tasks.
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 20000);
+    for (const std::string wide : {"bvh4", "bvh8"}) {
+        CAPTURE(wide);
+        const std::string spec = wide + ",max_leaf=4,ct=1,threads=";
+        const AnyAccel one = build_accel(spec + "1", soup.input());
+        REQUIRE(accel_validate(one).empty());
+        REQUIRE(accel_info(one).max_depth > 4);
+        for (const char* threads : {"2", "4", "0"}) {
+            CAPTURE(threads);
+            CHECK(build_accel(spec + threads, soup.input()) == one);
+        }
+    }
+}
+
 TEST_CASE("wide BVH validate() finds broken invariants", "[accel][wide]") {
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, 3, 300);
     const WideBvh<8> good = std::get<WideBvh<8>>(build_accel("bvh8", soup.input()));
