@@ -16,7 +16,7 @@ namespace rtlab {
 namespace {
 
 /// The binary nodes that become the children of a wide node, at most N (no heap: this runs once
-/// per wide node, serially).
+/// per wide node).
 template <unsigned N>
 struct Kids {
     std::array<std::uint32_t, N> node{};
