@@ -38,6 +38,22 @@ std::string use_leaf_slots(std::span<const std::uint32_t> prim_ids,
 std::string check_slots_covered(std::span<const std::uint32_t> prim_ids,
                                 const std::vector<char>& used);
 
+/// The node bookkeeping of the validate() walks: every node reached once, none deeper than 64,
+/// all of them reached.
+class NodeWalk {
+public:
+    explicit NodeWalk(std::size_t nodes) : seen_(nodes, 0) {}
+    /// Marks `node`, reached at `depth`; empty, or the violation (out of range, reached twice,
+    /// depth > 64).
+    std::string visit(std::uint32_t node, std::uint32_t depth);
+    /// Empty when every node was visited; else how many were not.
+    std::string unreached() const;
+
+private:
+    std::vector<char> seen_;
+    std::size_t visited_ = 0;
+};
+
 /// Ranges at least this long are reduced (bounds, bins) in parallel blocks of `reduce_block`:
 /// the top nodes of an unbalanced tree (a floor split off a mesh) would otherwise run one thread
 /// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.

@@ -155,6 +155,25 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     return bvh;
 }
 
+std::string bvh_detail::NodeWalk::visit(std::uint32_t node, std::uint32_t depth) {
+    if (node >= seen_.size() || seen_[node]) {
+        return "out of range or reached twice";
+    }
+    seen_[node] = 1;
+    ++visited_;
+    if (depth > 64) {
+        return "depth " + std::to_string(depth) + " > 64";
+    }
+    return {};
+}
+
+std::string bvh_detail::NodeWalk::unreached() const {
+    if (visited_ == seen_.size()) {
+        return {};
+    }
+    return std::to_string(seen_.size() - visited_) + " nodes unreachable";
+}
+
 std::string Bvh::validate() const {
     if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
         !e.empty()) {
@@ -164,23 +183,17 @@ std::string Bvh::validate() const {
         return prim_ids.empty() ? std::string{} : "primitives but no nodes";
     }
     std::vector<char> slot_used(prim_ids.size(), 0);
-    std::vector<char> node_seen(nodes.size(), 0);
+    bvh_detail::NodeWalk walk(nodes.size());
     struct Item {
         std::uint32_t node, depth;
     };
     std::vector<Item> stack{{0, 0}};
-    std::size_t visited = 0;
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
         const std::string where = "node " + std::to_string(it.node) + ": ";
-        if (node_seen[it.node]) {
-            return where + "reached twice";
-        }
-        node_seen[it.node] = 1;
-        ++visited;
-        if (it.depth > 64) {
-            return where + "depth " + std::to_string(it.depth) + " > 64";
+        if (std::string e = walk.visit(it.node, it.depth); !e.empty()) {
+            return where + e;
         }
         const BvhNode& n = nodes[it.node];
         const Bounds3f box = n.bounds();
@@ -211,8 +224,8 @@ std::string Bvh::validate() const {
             stack.push_back({c, it.depth + 1});
         }
     }
-    if (visited != nodes.size()) {
-        return std::to_string(nodes.size() - visited) + " nodes unreachable";
+    if (std::string e = walk.unreached(); !e.empty()) {
+        return e;
     }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);
 }

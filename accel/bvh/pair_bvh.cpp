@@ -124,24 +124,19 @@ std::string PairBvh::validate() const {
             return "root: " + e;
         }
     } else {
-        std::vector<char> node_seen(nodes.size(), 0);
+        bvh_detail::NodeWalk walk(nodes.size());
         struct Item {
             std::uint32_t node, depth;
             Bounds3f box;
         };
         std::vector<Item> stack{{0, 0, root_box}};
-        std::size_t visited = 0;
         while (!stack.empty()) {
             const Item it = stack.back();
             stack.pop_back();
             const std::string where = "node " + std::to_string(it.node) + ": ";
-            if (it.node >= nodes.size() || node_seen[it.node]) {
-                return where + "out of range or reached twice";
-            }
-            node_seen[it.node] = 1;
-            ++visited;
-            if (it.depth >= 64) {
-                return where + "depth " + std::to_string(it.depth + 1) + " > 64";
+            // A pair node holds the children one level below it: depth + 1 is theirs.
+            if (std::string e = walk.visit(it.node, it.depth + 1); !e.empty()) {
+                return where + e;
             }
             const PairNode& n = nodes[it.node];
             for (int c = 0; c < 2; ++c) {
@@ -159,8 +154,8 @@ std::string PairBvh::validate() const {
                 }
             }
         }
-        if (visited != nodes.size()) {
-            return std::to_string(nodes.size() - visited) + " nodes unreachable";
+        if (std::string e = walk.unreached(); !e.empty()) {
+            return e;
         }
     }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);

@@ -70,25 +70,19 @@ std::string WideBvh<N>::validate() const {
         return prim_ids.empty() ? std::string{} : "primitives but no nodes";
     }
     std::vector<char> slot_used(prim_ids.size(), 0);
-    std::vector<char> node_seen(nodes.size(), 0);
+    bvh_detail::NodeWalk walk(nodes.size());
     struct Item {
         std::uint32_t node, depth;
         Bounds3f box;  // the parent slot's box (everything for the root)
     };
     const float inf = std::numeric_limits<float>::infinity();
     std::vector<Item> stack{{0, 0, {{-inf, -inf, -inf}, {inf, inf, inf}}}};
-    std::size_t visited = 0;
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
         const std::string where = "node " + std::to_string(it.node) + ": ";
-        if (node_seen[it.node]) {
-            return where + "reached twice";
-        }
-        node_seen[it.node] = 1;
-        ++visited;
-        if (it.depth > 64) {
-            return where + "depth " + std::to_string(it.depth) + " > 64";
+        if (std::string e = walk.visit(it.node, it.depth); !e.empty()) {
+            return where + e;
         }
         const WideNode<N>& n = nodes[it.node];
         unsigned used = 0;
@@ -131,8 +125,8 @@ std::string WideBvh<N>::validate() const {
             return where + std::to_string(used) + " children";
         }
     }
-    if (visited != nodes.size()) {
-        return std::to_string(nodes.size() - visited) + " nodes unreachable";
+    if (std::string e = walk.unreached(); !e.empty()) {
+        return e;
     }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);
 }
