@@ -227,13 +227,14 @@ Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
     return align_leaf_slots(source_bvh(in, s), soa ? as_u32(s.value("leaf_align")) : 1);
 }
 
-/// The pair layout's row: the `from` builder's tree (spec's Config) in pair nodes; the whole
-/// row (build, alignment, conversion) on the spec's `threads`.
-AnyAccel pair_row(const BuildInput& in, const AccelSpec& s) {
+/// A layout row (bvh:pair, bvh4, bvh8): the `from` builder's tree (spec's Config) converted by
+/// Convert, the whole row (build, alignment, conversion) on the spec's `threads`.
+template <auto Convert>
+AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     return with_threads(threads_of(s), [&]() -> AnyAccel {
-        PairBvh p = PairBvh::convert(aligned_source(in, s));
-        p.soa_leaves = s.value("leaves") == 0;
-        return p;
+        auto layout = Convert(aligned_source(in, s));
+        layout.soa_leaves = s.value("leaves") == 0;
+        return layout;
     });
 }
 
@@ -255,17 +256,6 @@ const ParamSpec wide_ct = with_default(bvh_ct, 4);
 const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
 const ParamSpec pair_bins = with_default(bins, 32);
 const ParamSpec pair_ct = with_default(bvh_ct, 16);
-
-/// A wide layout's row: the `from` builder's tree (spec's Config), collapsed to N children; the
-/// whole row on the spec's `threads`.
-template <unsigned N>
-AnyAccel wide_row(const BuildInput& in, const AccelSpec& s) {
-    return with_threads(threads_of(s), [&]() -> AnyAccel {
-        WideBvh<N> w = collapse_bvh<N>(aligned_source(in, s));
-        w.soa_leaves = s.value("leaves") == 0;
-        return w;
-    });
-}
 
 AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
     return BruteForce::build(in);
@@ -289,7 +279,7 @@ const AccelEntry registry_rows[] = {
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
      {from, leaves, leaf_align, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits, threads},
-     &pair_row},
+     &layout_row<&PairBvh::convert>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
      {max_leaf, bvh_ct, bvh_ci, threads},
@@ -301,11 +291,11 @@ const AccelEntry registry_rows[] = {
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
      {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
-     &wide_row<4>},
+     &layout_row<&collapse_bvh<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
      {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
-     &wide_row<8>},
+     &layout_row<&collapse_bvh<8>>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
      {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_scan.h>
 #include <vector>
@@ -122,10 +121,11 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
             }
         });
     };
-    // Uninitialised and filled in parallel: this runs inside the wide and pair layouts' builds.
-    const std::unique_ptr<std::uint32_t[]> shift(new std::uint32_t[n]);
+    // Zeroed in parallel, not at construction: this runs inside the wide and pair layouts' builds.
+    ScratchVector<std::uint32_t> shift(n);
     bvh_detail::for_blocks(n, [&](std::size_t, std::size_t lo, std::size_t hi) {
-        std::fill(shift.get() + lo, shift.get() + hi, 0u);
+        std::fill(shift.begin() + static_cast<std::ptrdiff_t>(lo),
+                  shift.begin() + static_cast<std::ptrdiff_t>(hi), 0u);
     });
     leaves([&](const BvhNode& l) {
         const std::uint32_t c = l.prim_count();
