@@ -446,6 +446,62 @@ TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[
     }
 }
 
+TEST_CASE("full-sweep SAH splits the root where the serial sweep's minimum is", "[accel][bvh]") {
+    // 70000 primitives: the root's sweeps run in parallel blocks (65536 or more), each from the
+    // unions of the blocks beside it. The split's cost must be the minimum over every split
+    // between consecutive centres (ties by id) on every axis, computed here one slot at a time.
+    const std::vector<Bounds3f> boxes =
+        test::random_soup(test::SoupKind::triangles, 7, 70000).boxes;
+    const Bvh bvh = build_with(boxes, "bvh:sweep");
+    const BvhNode& root = bvh.nodes.at(0);
+    REQUIRE_FALSE(root.is_leaf());
+    const auto prims_under = [&](std::uint32_t node) {
+        std::uint32_t count = 0;
+        std::vector<std::uint32_t> todo{node};
+        while (!todo.empty()) {
+            const BvhNode& n = bvh.nodes[todo.back()];
+            todo.pop_back();
+            if (n.is_leaf()) {
+                count += n.prim_count();
+            } else {
+                todo.insert(todo.end(), {n.first, n.first + 1});
+            }
+        }
+        return count;
+    };
+    const BvhNode& left = bvh.nodes[root.first];
+    const BvhNode& right = bvh.nodes[root.first + 1];
+    const float built =
+        left.bounds().surface_area() * static_cast<float>(prims_under(root.first)) +
+        right.bounds().surface_area() * static_cast<float>(prims_under(root.first + 1));
+
+    float best = std::numeric_limits<float>::infinity();
+    const std::size_t n = boxes.size();
+    for (std::size_t a = 0; a < 3; ++a) {
+        std::vector<std::uint32_t> order(n);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            order[i] = i;
+        }
+        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+            const float cx = boxes[x].center()[a], cy = boxes[y].center()[a];
+            return cx < cy || (cx == cy && x < y);
+        });
+        std::vector<float> right_area(n);
+        Bounds3f acc;
+        for (std::size_t i = n; i-- > 1;) {
+            acc.extend(boxes[order[i]]);
+            right_area[i] = acc.surface_area();
+        }
+        acc = Bounds3f{};
+        for (std::size_t i = 1; i < n; ++i) {
+            acc.extend(boxes[order[i - 1]]);
+            best = std::min(best, acc.surface_area() * static_cast<float>(i) +
+                                      right_area[i] * static_cast<float>(n - i));
+        }
+    }
+    CHECK(built == best);
+}
+
 TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[accel][bvh]") {
     const std::string from = GENERATE("pbinned", "binned", "sweep", "lbvh", "median");
     const auto count = GENERATE(0u, 1u, 2u, 5u, 1000u);

@@ -14,25 +14,6 @@ namespace rtlab::bvh_detail {
 
 namespace {
 
-/// start[k] = how many i below block k's first index satisfy pred(i), for every block of
-/// for_blocks and one past the last (the total): where block k's selected indices go when they
-/// are packed in order. The same for any thread count.
-template <class Pred>
-std::vector<std::uint32_t> block_starts(std::size_t n, const Pred& pred) {
-    std::vector<std::uint32_t> start((n + reduce_block - 1) / reduce_block + 1, 0);
-    for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
-        std::uint32_t count = 0;
-        for (std::size_t i = lo; i < hi; ++i) {
-            count += pred(i) ? 1u : 0u;
-        }
-        start[k + 1] = count;
-    });
-    for (std::size_t k = 1; k < start.size(); ++k) {
-        start[k] += start[k - 1];
-    }
-    return start;
-}
-
 /// Union of box_of(i) for i in [b, e); exact under any grouping, so the same for any threads.
 template <class BoxOf>
 Bounds3f union_over(std::uint32_t b, std::uint32_t e, const BoxOf& box_of) {

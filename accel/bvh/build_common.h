@@ -69,6 +69,73 @@ void for_blocks(std::size_t n, const F& f) {
     });
 }
 
+/// f(lo, hi) over [0, n): once for the whole of a range shorter than reduce_min, else for every
+/// block of for_blocks, in parallel.
+template <class F>
+void for_range(std::size_t n, const F& f) {
+    if (n < reduce_min) {
+        f(std::size_t{0}, n);
+    } else {
+        for_blocks(n, [&](std::size_t, std::size_t lo, std::size_t hi) { f(lo, hi); });
+    }
+}
+
+/// start[k] = how many i below block k's first index satisfy pred(i), for every block of
+/// for_blocks and one past the last (the total): where block k's selected indices go when they
+/// are packed in order. The same for any thread count.
+template <class Pred>
+std::vector<std::uint32_t> block_starts(std::size_t n, const Pred& pred) {
+    std::vector<std::uint32_t> start((n + reduce_block - 1) / reduce_block + 1, 0);
+    for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        std::uint32_t count = 0;
+        for (std::size_t i = lo; i < hi; ++i) {
+            count += pred(i) ? 1u : 0u;
+        }
+        start[k + 1] = count;
+    });
+    for (std::size_t k = 1; k < start.size(); ++k) {
+        start[k] += start[k - 1];
+    }
+    return start;
+}
+
+/// Stably partitions v[b, e) by in_first(x) (those first, each part in its old order) through
+/// scratch[b, e); returns the first slot of the second part. The stable order is unique, so the
+/// result is the same for any thread count; ranges of reduce_min or more run in parallel blocks.
+template <class Pred>
+std::uint32_t stable_partition(std::span<std::uint32_t> v,
+                               std::span<std::uint32_t> scratch,
+                               std::uint32_t b,
+                               std::uint32_t e,
+                               const Pred& in_first) {
+    if (e - b < reduce_min) {
+        std::uint32_t l = b, r = b;
+        for (std::uint32_t i = b; i < e; ++i) {
+            if (in_first(v[i])) {
+                v[l++] = v[i];
+            } else {
+                scratch[r++] = v[i];
+            }
+        }
+        std::copy(scratch.begin() + b, scratch.begin() + r, v.begin() + l);
+        return l;
+    }
+    const std::size_t n = e - b;
+    const std::vector<std::uint32_t> start =
+        block_starts(n, [&](std::size_t i) { return in_first(v[b + i]); });
+    const std::uint32_t mid = b + start.back();
+    for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        std::size_t l = b + start[k], r = mid + (lo - start[k]);
+        for (std::size_t i = b + lo; i < b + hi; ++i) {
+            (in_first(v[i]) ? scratch[l++] : scratch[r++]) = v[i];
+        }
+    });
+    for_range(n, [&](std::size_t lo, std::size_t hi) {
+        std::copy(scratch.begin() + b + lo, scratch.begin() + b + hi, v.begin() + b + lo);
+    });
+    return mid;
+}
+
 /// ceil(log2(n)) for n >= 1 (0 for n = 1).
 std::uint32_t ceil_log2(std::uint64_t n);
 

@@ -1,8 +1,9 @@
 // Full-sweep SAH (MacDonald & Booth 1990, "Heuristics for ray tracing using space subdivision"):
 // every split between consecutive centroids on every axis is evaluated with the SAH. The ids are
 // sorted once per axis (ties by id) and kept sorted by stable partitioning, so the build is
-// O(N log N) for the sort plus O(N) per tree level; subtrees in parallel with `threads`. Ranges
-// whose centroids coincide split at the median by count.
+// O(N log N) for the sort plus O(N) per tree level; subtrees in parallel with `threads`, and the
+// sweeps and partitions of large ranges (the top nodes) in parallel blocks. Ranges whose
+// centroids coincide split at the median by count.
 
 #include "accel/bvh/build_common.h"
 
@@ -15,6 +16,71 @@
 namespace rtlab {
 
 namespace {
+
+/// The SAH's best split of one axis order o[b, e): its unnormalised cost (times the node area,
+/// as in the binned builder) and the first slot of the right child, the first minimum in slot
+/// order; cost infinity when no split has a finite cost. right_area[b, e) is scratch.
+struct AxisBest {
+    float cost = std::numeric_limits<float>::infinity();
+    std::uint32_t mid = 0;
+};
+
+AxisBest sweep_axis(const bvh_detail::TopDown& t,
+                    const std::vector<std::uint32_t>& o,
+                    std::uint32_t b,
+                    std::uint32_t e,
+                    std::vector<float>& right_area) {
+    // Slots [lo, hi) given the union of o[hi, e) (right) and of o[b, lo) (left): sweep from the
+    // right, then from the left; the split before slot i puts o[b, i) left.
+    const auto sweep = [&](std::uint32_t lo, std::uint32_t hi, Bounds3f right, Bounds3f left) {
+        for (std::uint32_t i = hi; i-- > lo;) {
+            right.extend(t.boxes[o[i]]);
+            right_area[i] = right.surface_area();
+        }
+        AxisBest best;
+        for (std::uint32_t i = lo; i < hi; ++i) {
+            if (i > b) {
+                const float cost = left.surface_area() * static_cast<float>(i - b) +
+                                   right_area[i] * static_cast<float>(e - i);
+                if (cost < best.cost) {
+                    best = {cost, i};
+                }
+            }
+            left.extend(t.boxes[o[i]]);
+        }
+        return best;
+    };
+    if (e - b < bvh_detail::reduce_min) {
+        return sweep(b, e, Bounds3f{}, Bounds3f{});
+    }
+    // Large ranges (the top of the tree) in parallel blocks, each starting from the unions of
+    // the blocks beside it. Unions are exact under any grouping, so every area, cost and the
+    // first minimum are those of the serial sweep.
+    const std::size_t n = e - b;
+    const std::size_t blocks = (n + bvh_detail::reduce_block - 1) / bvh_detail::reduce_block;
+    std::vector<Bounds3f> block_box(blocks), after(blocks + 1), before(blocks + 1);
+    bvh_detail::for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        for (std::size_t i = b + lo; i < b + hi; ++i) {
+            block_box[k].extend(t.boxes[o[i]]);
+        }
+    });
+    for (std::size_t k = 0; k < blocks; ++k) {
+        before[k + 1] = Bounds3f(before[k]).extend(block_box[k]);
+        after[blocks - 1 - k] = Bounds3f(after[blocks - k]).extend(block_box[blocks - 1 - k]);
+    }
+    std::vector<AxisBest> best(blocks);
+    bvh_detail::for_blocks(n, [&](std::size_t k, std::size_t lo, std::size_t hi) {
+        best[k] = sweep(static_cast<std::uint32_t>(b + lo), static_cast<std::uint32_t>(b + hi),
+                        after[k + 1], before[k]);
+    });
+    AxisBest out;
+    for (const AxisBest& x : best) {
+        if (x.cost < out.cost) {
+            out = x;
+        }
+    }
+    return out;
+}
 
 Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
@@ -54,25 +120,13 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
             best_axis = static_cast<std::uint32_t>(cb.largest_axis());
             best_mid = b + n / 2;
         } else {
-            // Costs compared unnormalised (times the node area), as in the binned builder.
             float best = std::numeric_limits<float>::infinity();
             for (std::uint32_t a = 0; a < 3; ++a) {
-                const std::vector<std::uint32_t>& o = order[a];
-                Bounds3f acc;
-                for (std::uint32_t i = e - 1; i > b; --i) {
-                    acc.extend(t.boxes[o[i]]);
-                    right_area[i] = acc.surface_area();
-                }
-                acc = Bounds3f{};
-                for (std::uint32_t i = b + 1; i < e; ++i) {
-                    acc.extend(t.boxes[o[i - 1]]);
-                    const float cost = acc.surface_area() * static_cast<float>(i - b) +
-                                       right_area[i] * static_cast<float>(e - i);
-                    if (cost < best) {
-                        best = cost;
-                        best_axis = a;
-                        best_mid = i;
-                    }
+                const AxisBest x = sweep_axis(t, order[a], b, e, right_area);
+                if (x.cost < best) {
+                    best = x.cost;
+                    best_axis = a;
+                    best_mid = x.mid;
                 }
             }
             if (best == std::numeric_limits<float>::infinity()) {
@@ -89,25 +143,22 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
             }
         }
         // Mark the left set, then stably partition the other two orders so they stay sorted.
-        for (std::uint32_t i = b; i < e; ++i) {
-            goes_left[order[best_axis][i]] = i < best_mid ? 1 : 0;
-        }
+        const std::vector<std::uint32_t>& split_order = order[best_axis];
+        bvh_detail::for_range(n, [&](std::size_t lo, std::size_t hi) {
+            for (std::size_t i = b + lo; i < b + hi; ++i) {
+                goes_left[split_order[i]] = i < best_mid ? 1 : 0;
+            }
+        });
         for (std::uint32_t a = 0; a < 3; ++a) {
-            if (a == best_axis) {
-                continue;
+            if (a != best_axis) {
+                bvh_detail::stable_partition(order[a], scratch, b, e,
+                                             [&](std::uint32_t id) { return goes_left[id] != 0; });
             }
-            std::vector<std::uint32_t>& o = order[a];
-            std::uint32_t l = b, r = b;
-            for (std::uint32_t i = b; i < e; ++i) {
-                if (goes_left[o[i]]) {
-                    o[l++] = o[i];
-                } else {
-                    scratch[r++] = o[i];
-                }
-            }
-            std::copy(scratch.begin() + b, scratch.begin() + r, o.begin() + l);
         }
-        std::copy(order[best_axis].begin() + b, order[best_axis].begin() + e, t.ids.begin() + b);
+        bvh_detail::for_range(n, [&](std::size_t lo, std::size_t hi) {
+            std::copy(split_order.begin() + b + lo, split_order.begin() + b + hi,
+                      t.ids.begin() + b + lo);
+        });
         return bvh_detail::Split{best_mid, best_axis};
     };
     return td.run(split, parallel);
