@@ -33,6 +33,7 @@ namespace rtlab::bench {
 
 namespace {
 constexpr std::size_t check_rays = 1000;
+constexpr std::size_t max_disagreements = 5;
 }  // namespace
 
 const BuiltScene& cached_embree_scene(const std::string& scene, RTCBuildQuality q) {
@@ -81,39 +82,33 @@ Agreement embree_agreement(const EmbreeScene& e, const std::string& scene, RayKi
     return a;
 }
 
-}  // namespace rtlab::bench
+std::size_t embree_primitive_count(const Scene& s) {
+    std::size_t n = s.spheres.size();
+    for (const MeshObject& m : s.meshes) {
+        n += m.mesh.triangle_count();
+    }
+    return n;
+}
 
-namespace {
-
-using namespace rtlab;
-using namespace rtlab::bench;
-
-constexpr std::size_t max_disagreements = 5;
-
-struct Quality {
-    const char* name;
-    RTCBuildQuality quality;
-};
-
-constexpr Quality qualities[] = {{"medium", RTC_BUILD_QUALITY_MEDIUM},
-                                 {"high", RTC_BUILD_QUALITY_HIGH}};
-
-void bm_embree_trace(benchmark::State& state, Quality q, std::string scene, RayKind kind) {
+const BuiltScene* run_embree_trace(benchmark::State& state,
+                                   const std::string& scene,
+                                   RTCBuildQuality q,
+                                   RayKind kind) {
     const BuiltScene* built = nullptr;
     Agreement a;
     try {
-        built = &cached_embree_scene(scene, q.quality);
+        built = &cached_embree_scene(scene, q);
         a = embree_agreement(*built->scene, scene, kind);
     } catch (const std::exception& ex) {
         state.SkipWithError(ex.what());
-        return;
+        return nullptr;
     }
     if (a.checked - a.agree > max_disagreements) {
         const std::string msg = "embree and bvh:binned disagree on " +
                                 std::to_string(a.checked - a.agree) + " of " +
                                 std::to_string(a.checked) + " rays";
         state.SkipWithError(msg.c_str());
-        return;
+        return nullptr;
     }
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
     std::vector<float> t(rays.size());
@@ -130,17 +125,24 @@ void bm_embree_trace(benchmark::State& state, Quality q, std::string scene, RayK
     const auto n = static_cast<double>(rays.size());
     state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["build_ms"] = built->build_ms;
+    state.counters["prims"] = static_cast<double>(embree_primitive_count(bench_scene(scene).scene));
     state.counters["agree"] = static_cast<double>(a.agree);
     state.counters["agree_hits"] = static_cast<double>(a.hits);
-    const Scene& s = bench_scene(scene).scene;
-    std::size_t prims = s.spheres.size();
-    for (const MeshObject& m : s.meshes) {
-        prims += m.mesh.triangle_count();
-    }
-    state.counters["prims"] = static_cast<double>(prims);
+    return built;
 }
 
-void bm_embree_build(benchmark::State& state, Quality q, int sf, int threads) {
+}  // namespace rtlab::bench
+
+namespace {
+
+using namespace rtlab;
+using namespace rtlab::bench;
+
+void bm_embree_trace(benchmark::State& state, EmbreeQuality q, std::string scene, RayKind kind) {
+    run_embree_trace(state, scene, q.quality, kind);
+}
+
+void bm_embree_build(benchmark::State& state, EmbreeQuality q, int sf, int threads) {
     const Scene& scene = build_soup(sf);
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
@@ -158,7 +160,7 @@ void bm_embree_build(benchmark::State& state, Quality q, int sf, int threads) {
 }  // namespace
 
 void rtlab::bench::register_embree_benchmarks() {
-    for (const Quality& q : qualities) {
+    for (const EmbreeQuality& q : embree_qualities) {
         const std::string accel = std::string("embree:") + q.name;
         for (const std::string& scene : trace_scene_names()) {
             for (RayKind k : bench_ray_kinds) {
@@ -170,7 +172,7 @@ void rtlab::bench::register_embree_benchmarks() {
             }
         }
     }
-    for (const Quality& q : qualities) {
+    for (const EmbreeQuality& q : embree_qualities) {
         for (int sf : build_soup_sizes()) {
             const std::size_t prims = std::size_t{1024} << sf;
             for (int threads : {1, 2}) {

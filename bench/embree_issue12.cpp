@@ -13,7 +13,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <exception>
 #include <string>
 #include <tbb/global_control.h>
 #include <vector>
@@ -23,62 +22,19 @@ namespace {
 using namespace rtlab;
 using namespace rtlab::bench;
 
-struct Quality {
-    const char* name;
-    RTCBuildQuality quality;
-};
-
-constexpr Quality qualities[] = {{"medium", RTC_BUILD_QUALITY_MEDIUM},
-                                 {"high", RTC_BUILD_QUALITY_HIGH}};
 constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
 
-std::size_t primitive_count(const Scene& s) {
-    std::size_t n = s.spheres.size();
-    for (const MeshObject& m : s.meshes) {
-        n += m.mesh.triangle_count();
-    }
-    return n;
-}
-
-void bm_trace(benchmark::State& state, Quality q, std::string scene, RayKind kind, int threads) {
+void bm_trace(
+    benchmark::State& state, EmbreeQuality q, std::string scene, RayKind kind, int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
-    const BuiltScene* built = nullptr;
-    Agreement a;
-    try {
-        built = &cached_embree_scene(scene, q.quality);
-        a = embree_agreement(*built->scene, scene, kind);
-    } catch (const std::exception& ex) {
-        state.SkipWithError(ex.what());
-        return;
+    if (const BuiltScene* built = run_embree_trace(state, scene, q.quality, kind)) {
+        state.counters["bytes/prim"] =
+            static_cast<double>(built->scene->bytes()) / state.counters["prims"].value;
     }
-    if (a.checked - a.agree > 5) {
-        state.SkipWithError("embree and bvh:binned disagree on more than 5 of 1000 rays");
-        return;
-    }
-    const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
-    std::vector<float> t(rays.size());
-    std::vector<std::uint8_t> blocked(rays.size());
-    for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            built->scene->occluded(rays, blocked);
-            benchmark::DoNotOptimize(blocked.data());
-        } else {
-            built->scene->intersect(rays, t);
-            benchmark::DoNotOptimize(t.data());
-        }
-    }
-    const auto n = static_cast<double>(rays.size());
-    const auto prims = static_cast<double>(primitive_count(bench_scene(scene).scene));
-    state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
-    state.counters["build_ms"] = built->build_ms;
-    state.counters["prims"] = prims;
-    state.counters["bytes/prim"] = static_cast<double>(built->scene->bytes()) / prims;
-    state.counters["agree"] = static_cast<double>(a.agree);
-    state.counters["agree_hits"] = static_cast<double>(a.hits);
 }
 
-void bm_build(benchmark::State& state, Quality q, std::string scene, int threads) {
+void bm_build(benchmark::State& state, EmbreeQuality q, std::string scene, int threads) {
     const Scene& s = bench_scene(scene).scene;
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
@@ -92,7 +48,7 @@ void bm_build(benchmark::State& state, Quality q, std::string scene, int threads
         bytes = static_cast<double>(e.bytes());
     }
     std::sort(ms.begin(), ms.end());
-    const auto prims = static_cast<double>(primitive_count(s));
+    const auto prims = static_cast<double>(embree_primitive_count(s));
     state.counters["prims"] = prims;
     state.counters["build_ms"] = ms[ms.size() / 2];
     state.counters["bytes/prim"] = bytes / prims;
@@ -106,7 +62,7 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
     for (const std::string& s : issue12_sphere_scenes()) {
         scenes.push_back(s);
     }
-    for (const Quality& q : qualities) {
+    for (const EmbreeQuality& q : embree_qualities) {
         const std::string accel = std::string("embree:") + q.name;
         for (const std::string& scene : scenes) {
             for (RayKind k : issue_kinds) {

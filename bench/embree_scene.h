@@ -9,6 +9,8 @@
 #include "scene/scene.h"
 #include "trace/ray_gen.h"
 
+#include <benchmark/benchmark.h>
+
 #include <cstdint>
 #include <embree3/rtcore.h>
 #include <memory>
@@ -72,5 +74,26 @@ struct Agreement {
 /// Traces the first 1000 rays of (scene, kind) with e and with bvh:binned: a ray agrees when
 /// both miss, or both hit with |t_embree - t_ours| <= 1e-4 |t_ours| (shadow: same occlusion).
 Agreement embree_agreement(const EmbreeScene& e, const std::string& scene, RayKind kind);
+
+/// An Embree build quality the baselines run, with its name in benchmark names.
+struct EmbreeQuality {
+    const char* name;
+    RTCBuildQuality quality;
+};
+inline constexpr EmbreeQuality embree_qualities[] = {{"medium", RTC_BUILD_QUALITY_MEDIUM},
+                                                     {"high", RTC_BUILD_QUALITY_HIGH}};
+
+/// The primitives of s an EmbreeScene holds: its triangles and spheres.
+std::size_t embree_primitive_count(const Scene& s);
+
+/// The body of an Embree trace benchmark on the rays of (scene, kind) at quality q: the scene
+/// from cached_embree_scene, embree_agreement on its first 1000 rays (more than 5 disagreements
+/// skip the benchmark with an error), then each iteration traces every ray (rtcOccluded1 for
+/// shadow rays, else rtcIntersect1). Sets the counters rays/s, build_ms, prims, agree and
+/// agree_hits; returns the built scene, or nullptr when the benchmark was skipped.
+const BuiltScene* run_embree_trace(benchmark::State& state,
+                                   const std::string& scene,
+                                   RTCBuildQuality q,
+                                   RayKind kind);
 
 }  // namespace rtlab::bench
