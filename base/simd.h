@@ -55,27 +55,35 @@ inline SimdLevel simd_supported() {
 }
 
 namespace detail {
-/// The cap set by set_simd_cap, initially RTLAB_SIMD (or the highest level when unset/unknown).
-inline std::atomic<SimdLevel>& simd_cap() {
-    static std::atomic<SimdLevel> cap = [] {
-        const char* env = std::getenv("RTLAB_SIMD");
-        const auto l = env != nullptr ? parse_simd_level(env) : std::nullopt;
-        return l.value_or(SimdLevel::avx512);
-    }();
-    return cap;
+/// RTLAB_SIMD's level, or the highest level when it is unset or unknown.
+inline SimdLevel env_simd_cap() {
+    const char* env = std::getenv("RTLAB_SIMD");
+    const auto l = env != nullptr ? parse_simd_level(env) : std::nullopt;
+    return l.value_or(SimdLevel::avx512);
 }
+
+inline SimdLevel lower(SimdLevel a, SimdLevel b) {
+    return a < b ? a : b;
+}
+
+/// The cap set by set_simd_cap, and the level in use (the lower of the cap and the CPU's), kept
+/// beside it so that simd_level(), run by every query, is one load. Namespace-scope variables,
+/// not function-local statics, for the same reason (no guard check per call); a call before their
+/// dynamic initialisation would see sse2 (zero), a slower path, never a wrong one.
+inline std::atomic<SimdLevel> simd_cap{env_simd_cap()};
+inline std::atomic<SimdLevel> simd_in_use{lower(env_simd_cap(), simd_supported())};
 }  // namespace detail
 
 /// Limits every later kernel call to `cap` (or lower when the CPU lacks it); returns the old cap.
 inline SimdLevel set_simd_cap(SimdLevel cap) {
-    return detail::simd_cap().exchange(cap);
+    const SimdLevel old = detail::simd_cap.exchange(cap);
+    detail::simd_in_use.store(detail::lower(cap, simd_supported()));
+    return old;
 }
 
 /// The level kernels use now: the lower of the CPU's and the cap.
 inline SimdLevel simd_level() {
-    const SimdLevel cap = detail::simd_cap().load(std::memory_order_relaxed);
-    const SimdLevel cpu = simd_supported();
-    return cap < cpu ? cap : cpu;
+    return detail::simd_in_use.load(std::memory_order_relaxed);
 }
 
 /// Sets a cap for the lifetime of the object (tests), restoring the previous one after.

@@ -9,13 +9,15 @@
 #include "scene/scene.h"
 #include "trace/ray_gen.h"
 
-#include <benchmark/benchmark.h>
-
 #include <cstdint>
 #include <embree3/rtcore.h>
 #include <memory>
 #include <span>
 #include <string>
+
+namespace benchmark {
+class State;
+}  // namespace benchmark
 
 namespace rtlab::bench {
 

@@ -33,11 +33,16 @@ using Rayd = Ray<double>;
 /// normal (not denormal, not zero) component, and a window with tmin <= tmax that is not NaN.
 /// Traversal rejects other rays before touching any node. Why no denormal-only directions: their
 /// reciprocal overflows to infinity, so slab tests would treat the ray as parallel to every axis.
+/// Written without branches, as every query runs it: x - x is 0 for a finite x and NaN for an
+/// infinite or NaN one, so the six differences sum to 0 exactly when all six are finite; tmin <=
+/// tmax is false when either is NaN.
 template <class T>
 bool is_valid(const Ray<T>& r) {
-    return is_finite(r.org) && is_finite(r.dir) &&
-           max_component(abs(r.dir)) >= std::numeric_limits<T>::min() && !(r.tmin != r.tmin) &&
-           !(r.tmax != r.tmax) && r.tmin <= r.tmax;
+    const Vec3<T> o = r.org - r.org;
+    const Vec3<T> d = r.dir - r.dir;
+    const bool finite = (o.x + o.y) + (o.z + d.x) + (d.y + d.z) == T(0);
+    const bool normal = max_component(abs(r.dir)) >= std::numeric_limits<T>::min();
+    return finite & normal & (r.tmin <= r.tmax);
 }
 
 }  // namespace rtlab
