@@ -598,6 +598,10 @@ def main():
     ap.add_argument("--bench", default="build/release/bench/rtlab_bench",
                     help="rtlab_bench executable to run (ignored with --json)")
     ap.add_argument("--quick", action="store_true", help="pass --quick to rtlab_bench")
+    ap.add_argument("--no-interleave", action="store_true",
+                    help="run each benchmark's repetitions back to back (default: Google "
+                    "Benchmark's random interleaving, so a slow spell of a shared machine falls "
+                    "on every row's repetitions alike instead of on a few rows)")
     ap.add_argument("--filter", default="", help="--benchmark_filter regex for rtlab_bench")
     ap.add_argument("--suite", default="all", choices=["all", "issue12", "grid2"],
                     help="issue12: run rtlab_bench --suite issue12 and write the target table; "
@@ -653,6 +657,8 @@ def main():
             cmd += ["--suite", args.suite]
         if args.filter:
             cmd.append(f"--benchmark_filter={args.filter}")
+        interleave = [] if args.no_interleave else ["--benchmark_enable_random_interleaving=true"]
+        cmd += interleave
         print("report: running " + " ".join(cmd), file=sys.stderr)
         start = time.time()
         res = subprocess.run(cmd, stdout=sys.stderr)
@@ -666,7 +672,7 @@ def main():
         data.setdefault("context", {})["rtlab_report_wall"] = wall
         shown = [args.bench] + (["--quick"] if args.quick else []) + (
             ["--suite", args.suite] if args.suite != "all" else []) + (
-            [f"--benchmark_filter='{args.filter}'"] if args.filter else [])
+            [f"--benchmark_filter='{args.filter}'"] if args.filter else []) + interleave
         command = " ".join(shown) + " --benchmark_out_format=json"
         data["context"]["rtlab_report_command"] = command
         if args.save_json:
