@@ -5,6 +5,7 @@
 // the CPU supports (__builtin_cpu_supports), lowered by the RTLAB_SIMD environment variable
 // (sse2|avx2|avx512) or by set_simd_cap() so tests and benchmarks can compare every path.
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
@@ -62,22 +63,19 @@ inline SimdLevel env_simd_cap() {
     return l.value_or(SimdLevel::avx512);
 }
 
-inline SimdLevel lower(SimdLevel a, SimdLevel b) {
-    return a < b ? a : b;
-}
-
 /// The cap set by set_simd_cap, and the level in use (the lower of the cap and the CPU's), kept
 /// beside it so that simd_level(), run by every query, is one load. Namespace-scope variables,
 /// not function-local statics, for the same reason (no guard check per call); a call before their
-/// dynamic initialisation would see sse2 (zero), a slower path, never a wrong one.
+/// dynamic initialisation would see sse2 (zero), a slower path, never a wrong one. simd_in_use is
+/// defined after simd_cap in every translation unit, so it is initialised after it.
 inline std::atomic<SimdLevel> simd_cap{env_simd_cap()};
-inline std::atomic<SimdLevel> simd_in_use{lower(env_simd_cap(), simd_supported())};
+inline std::atomic<SimdLevel> simd_in_use{std::min(simd_cap.load(), simd_supported())};
 }  // namespace detail
 
 /// Limits every later kernel call to `cap` (or lower when the CPU lacks it); returns the old cap.
 inline SimdLevel set_simd_cap(SimdLevel cap) {
     const SimdLevel old = detail::simd_cap.exchange(cap);
-    detail::simd_in_use.store(detail::lower(cap, simd_supported()));
+    detail::simd_in_use.store(std::min(cap, simd_supported()));
     return old;
 }
 
