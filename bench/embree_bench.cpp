@@ -82,14 +82,6 @@ Agreement embree_agreement(const EmbreeScene& e, const std::string& scene, RayKi
     return a;
 }
 
-std::size_t embree_primitive_count(const Scene& s) {
-    std::size_t n = s.spheres.size();
-    for (const MeshObject& m : s.meshes) {
-        n += m.mesh.triangle_count();
-    }
-    return n;
-}
-
 const BuiltScene* run_embree_trace(benchmark::State& state,
                                    const std::string& scene,
                                    RTCBuildQuality q,

@@ -194,4 +194,12 @@ void EmbreeScene::occluded(std::span<const Rayf> rays, std::span<std::uint8_t> b
                       });
 }
 
+std::size_t embree_primitive_count(const Scene& s) {
+    std::size_t n = s.spheres.size();
+    for (const MeshObject& m : s.meshes) {
+        n += m.mesh.triangle_count();
+    }
+    return n;
+}
+
 }  // namespace rtlab::bench
