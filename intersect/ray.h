@@ -35,9 +35,10 @@ using Rayd = Ray<double>;
 /// reciprocal overflows to infinity, so slab tests would treat the ray as parallel to every axis.
 /// Written without branches, as every query runs it: x - x is 0 for a finite x and NaN for an
 /// infinite or NaN one, so the six differences sum to 0 exactly when all six are finite; tmin <=
-/// tmax is false when either is NaN.
+/// tmax is false when either is NaN. Always inlined: GCC left it a call (about 15 more
+/// instructions per ray) in the batch loops where the traversal instantiations are largest.
 template <class T>
-bool is_valid(const Ray<T>& r) {
+[[gnu::always_inline]] inline bool is_valid(const Ray<T>& r) {
     const Vec3<T> o = r.org - r.org;
     const Vec3<T> d = r.dir - r.dir;
     const bool finite = (o.x + o.y) + (o.z + d.x) + (d.y + d.z) == T(0);
