@@ -2,33 +2,23 @@
 // unique, shards hold every case exactly once and keep scenes together where possible.
 #include "accel/spec.h"
 #include "base/error.h"
+#include "support/temp_dir.h"
 #include "sweep/plan.h"
 
 #include <catch2/catch.hpp>
 
-#include <filesystem>
-#include <fstream>
 #include <set>
 #include <string>
-#include <unistd.h>
 
 using namespace rtlab;
 
 namespace {
 
 sweep::SweepFile load_text(const std::string& text) {
-    // CTest runs the test cases as parallel processes: one file per process and call.
-    static int calls = 0;
-    const auto file = std::filesystem::temp_directory_path() /
-                      ("rtlab_sweep_plan_test-" + std::to_string(::getpid()) + "-" +
-                       std::to_string(calls++) + ".json");
-    {
-        std::ofstream out(file);
-        out << text;
-    }
-    sweep::SweepFile s = sweep::load_sweep_file(file);
-    std::filesystem::remove(file);
-    return s;
+    // Each call its own folder, removed even when loading throws (the bad-input cases).
+    const test::TempDir dir("rtlab_sweep_plan_test_");
+    test::write_text(dir.path / "sweep.json", text);
+    return sweep::load_sweep_file(dir.path / "sweep.json");
 }
 
 const char* three_scenes = R"({
