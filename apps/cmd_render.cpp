@@ -193,6 +193,7 @@ int run_render(const RenderArgs& a) {
     setup.robust = a.robust;
     const SceneTracer tracer(scene, setup);
     check_methods_used(tracer, setup.methods, "render");
+    load_image_writer(a.output);  // a missing OpenImageIO module fails before the render
 
     ProgressBar bar;
     if (isatty(2) != 0) {

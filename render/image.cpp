@@ -1,16 +1,20 @@
-// Image output through OpenImageIO: the format comes from the target's extension, the bytes go to
-// a temporary file beside it (mesh/atomic_file.h), so a failure never leaves a partial image.
+// Image output through OpenImageIO, in the rtlab_oiio module loaded on first use
+// (render/oiio_writer.h): the format comes from the target's extension, the bytes go to a
+// temporary file beside it (base/atomic_file.h), so a failure never leaves a partial image.
 #include "render/image.h"
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "render/oiio_writer.h"
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <dlfcn.h>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace rtlab {
 
@@ -26,6 +30,34 @@ std::string lower_extension(const std::filesystem::path& file) {
 std::uint8_t quantise(float v) {
     const float c = std::clamp(v, 0.0f, 1.0f);
     return static_cast<std::uint8_t>(std::lround(c * 255.0f));
+}
+
+/// The module's write function, loaded once: the installed module (lib/rtlab under the running
+/// executable's prefix, which has it in bin/), else the build tree's; an Error naming `file`
+/// when neither loads.
+RtlabOiioWrite* oiio_writer(const std::filesystem::path& file) {
+    static const std::pair<RtlabOiioWrite*, std::string> loaded = [] {
+        std::error_code ec;
+        const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+        const std::string installed =
+            (exe.parent_path().parent_path() / RTLAB_OIIO_MODULE_INSTALLED).string();
+        std::string why;
+        for (const std::string& path : {installed, std::string(RTLAB_OIIO_MODULE_BUILT)}) {
+            if (void* lib = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+                if (void* f = ::dlsym(lib, "rtlab_oiio_write")) {
+                    return std::pair{reinterpret_cast<RtlabOiioWrite*>(f), std::string()};
+                }
+            }
+            const char* e = ::dlerror();
+            why += (why.empty() ? "" : "; ") + (e != nullptr ? std::string(e) : path);
+        }
+        return std::pair{static_cast<RtlabOiioWrite*>(nullptr), why};
+    }();
+    if (loaded.first == nullptr) {
+        throw Error(file.string() + ": cannot load the OpenImageIO writer module (" +
+                    loaded.second + ")");
+    }
+    return loaded.first;
 }
 
 }  // namespace
@@ -48,6 +80,10 @@ std::size_t clear_non_finite(Image& img) {
     return n;
 }
 
+void load_image_writer(const std::filesystem::path& file) {
+    oiio_writer(file);
+}
+
 bool is_supported_image(const std::filesystem::path& file) {
     const std::string ext = lower_extension(file);
     return ext == ".png" || ext == ".exr";
@@ -65,39 +101,29 @@ void write_image(const Image& img, const std::filesystem::path& file, bool srgb)
         throw Error(file.string() + ": empty or inconsistent image");
     }
     const bool png = ext == ".png";
+    RtlabOiioWrite* const write = oiio_writer(file);
+    std::vector<std::uint8_t> bytes;
+    std::vector<float> values;
+    if (png) {
+        bytes.reserve(img.pixels.size() * 3);
+        for (const Vec3f& p : img.pixels) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                bytes.push_back(quantise(srgb ? linear_to_srgb(p[c]) : p[c]));
+            }
+        }
+    } else {
+        values.reserve(img.pixels.size() * 3);
+        for (const Vec3f& p : img.pixels) {
+            values.insert(values.end(), {p.x, p.y, p.z});
+        }
+    }
+    const void* pixels = png ? static_cast<const void*>(bytes.data()) : values.data();
     write_atomically(file, [&](const std::filesystem::path& tmp) {
-        // The temporary's extension is not an image one, so name the format explicitly.
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(png ? "png" : "openexr");
-        if (!out) {
-            throw Error(file.string() + ": no OpenImageIO writer (" + OIIO::geterror() + ")");
-        }
-        const OIIO::TypeDesc type = png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-        OIIO::ImageSpec spec(img.width, img.height, 3, type);
-        spec.attribute("oiio:ColorSpace", png && srgb ? "sRGB" : "Linear");
-        if (!out->open(tmp.string(), spec)) {
-            throw Error(file.string() + ": cannot write (" + out->geterror() + ")");
-        }
-        bool ok = false;
-        if (png) {
-            std::vector<std::uint8_t> bytes;
-            bytes.reserve(img.pixels.size() * 3);
-            for (const Vec3f& p : img.pixels) {
-                for (std::size_t c = 0; c < 3; ++c) {
-                    bytes.push_back(quantise(srgb ? linear_to_srgb(p[c]) : p[c]));
-                }
-            }
-            ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-        } else {
-            std::vector<float> values;
-            values.reserve(img.pixels.size() * 3);
-            for (const Vec3f& p : img.pixels) {
-                values.insert(values.end(), {p.x, p.y, p.z});
-            }
-            ok = out->write_image(OIIO::TypeDesc::FLOAT, values.data());
-        }
-        ok = out->close() && ok;
-        if (!ok) {
-            throw Error(file.string() + ": write failed (" + out->geterror() + ")");
+        // The temporary's extension is not an image one, so the format is named explicitly.
+        char error[512];
+        if (write(tmp.c_str(), png ? 1 : 0, srgb ? 1 : 0, img.width, img.height, pixels, error,
+                  sizeof error) != 0) {
+            throw Error(file.string() + ": " + error);
         }
     });
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Float RGB images and writing them through OpenImageIO (the only place that uses it): PNG as
-// 8-bit sRGB, EXR as linear float, chosen by the file extension; complete file or none.
+// Float RGB images and writing them through OpenImageIO (in a module loaded on first use,
+// render/oiio_writer.h): PNG as 8-bit sRGB, EXR as linear float, chosen by the file extension;
+// complete file or none.
 
 #include "intersect/vec.h"
 
@@ -41,6 +42,11 @@ std::size_t clear_non_finite(Image& img);
 
 /// True for the extensions write_image accepts (.png, .exr; case-insensitive).
 bool is_supported_image(const std::filesystem::path& file);
+
+/// Loads the OpenImageIO writer module (image_oiio/) if it is not loaded yet; write_image does
+/// this itself, a command calls it to fail before its work. Throws rtlab::Error naming `file` when
+/// the module cannot be loaded.
+void load_image_writer(const std::filesystem::path& file);
 
 /// Writes img to `file`: .png as 8-bit (sRGB-encoded when srgb, else values clamped to [0, 1] and
 /// quantised as they are), .exr as 32-bit float linear values. Writes a temporary file beside the
