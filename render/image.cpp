@@ -37,12 +37,16 @@ std::uint8_t quantise(float v) {
 /// when neither loads.
 RtlabOiioWrite* oiio_writer(const std::filesystem::path& file) {
     static const std::pair<RtlabOiioWrite*, std::string> loaded = [] {
+        std::vector<std::string> paths;
         std::error_code ec;
         const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-        const std::string installed =
-            (exe.parent_path().parent_path() / RTLAB_OIIO_MODULE_INSTALLED).string();
+        if (!ec && exe.is_absolute()) {  // never a path relative to the working directory
+            paths.push_back(
+                (exe.parent_path().parent_path() / RTLAB_OIIO_MODULE_INSTALLED).string());
+        }
+        paths.emplace_back(RTLAB_OIIO_MODULE_BUILT);
         std::string why;
-        for (const std::string& path : {installed, std::string(RTLAB_OIIO_MODULE_BUILT)}) {
+        for (const std::string& path : paths) {
             if (void* lib = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
                 if (void* f = ::dlsym(lib, "rtlab_oiio_write")) {
                     return std::pair{reinterpret_cast<RtlabOiioWrite*>(f), std::string()};
