@@ -55,10 +55,28 @@ namespace benchmark::internal {
 class Benchmark;
 }
 
+namespace rtlab {
+class SceneTracer;
+}
+
 namespace rtlab::bench {
 
 /// The issue-12 suite's timing settings: milliseconds, repetitions reported as aggregates.
 benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b);
+
+/// The issue-12 suite's structures: the BVH-family rows of bench_specs().
+std::vector<std::string> issue12_layout_specs();
+
+/// What an issue-12 tracer is built for.
+struct Issue12Key {
+    std::string scene;
+    std::string accel;
+    bool watertight = false;  ///< watertight triangle method and robust traversal
+    friend bool operator==(const Issue12Key&, const Issue12Key&) = default;
+};
+
+/// The SceneTracer of key, built on first use; only the most recent key's is kept.
+const SceneTracer& issue12_tracer(const Issue12Key& key);
 
 /// render/flake_mirror/{auto,all_features}: the mirror-only sphere flake rendered with the
 /// auto-selected integrator instance and with every feature compiled in.

@@ -6,6 +6,14 @@
 //       its memory monitor), agree and agree_hits (embree_agreement on the first 1000 rays).
 //   issue12/build/embree:<quality>/<scene>/threads:<k>  rtcCommitScene of the mesh scene's
 //       triangles; build_ms is the median of the timed commits.
+//   issue12/paired/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:1  our tracer for the
+//       row (the wide layouts and bvh:pair) against Embree medium, one thread, timed in
+//       alternation: each pair is one sample of ours and one of Embree's (order swapped from
+//       pair to pair), each sample one untimed pass over the rays, then enough timed passes to
+//       last >= 20 ms. Counters:
+//       ratio (median over the pairs of Embree's time / ours: our speed in Embree's), ratio_q1
+//       and ratio_q3 (quartiles), pairs, passes. A load burst on a shared machine slows both
+//       halves of a pair, so the ratio holds still where separate medians drift.
 #include "bench/benchmarks.h"
 #include "bench/embree_scene.h"
 #include "bench/trace_fixture.h"
@@ -13,6 +21,10 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <exception>
 #include <string>
 #include <tbb/global_control.h>
 #include <vector>
@@ -54,6 +66,113 @@ void bm_build(benchmark::State& state, EmbreeQuality q, std::string scene, int t
     state.counters["bytes/prim"] = bytes / prims;
 }
 
+/// Wall seconds of `passes` calls of f, after one untimed call (the other side's sample has just
+/// filled the caches with its own data).
+template <class F>
+double seconds_of(int passes, const F& f) {
+    f();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int p = 0; p < passes; ++p) {
+        f();
+    }
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The value at fraction q of sorted v (nearest rank).
+double quantile(const std::vector<double>& v, double q) {
+    return v[static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)))];
+}
+
+void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    const BuiltScene* built = nullptr;
+    try {
+        built = &cached_embree_scene(key.scene, RTC_BUILD_QUALITY_MEDIUM);
+    } catch (const std::exception& ex) {
+        state.SkipWithError(ex.what());
+        return;
+    }
+    const SceneTracer& t = issue12_tracer(key);
+    const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
+    std::vector<Hit> hits(rays.size());
+    std::vector<std::uint32_t> blockers(rays.size());
+    std::vector<float> et(rays.size());
+    std::vector<std::uint8_t> blocked(rays.size());
+    const auto ours = [&] {
+        if (kind == RayKind::shadow) {
+            t.occluded(rays, blockers);
+            benchmark::DoNotOptimize(blockers.data());
+        } else {
+            t.intersect(rays, hits);
+            benchmark::DoNotOptimize(hits.data());
+        }
+    };
+    const auto theirs = [&] {
+        if (kind == RayKind::shadow) {
+            built->scene->occluded(rays, blocked);
+            benchmark::DoNotOptimize(blocked.data());
+        } else {
+            built->scene->intersect(rays, et);
+            benchmark::DoNotOptimize(et.data());
+        }
+    };
+    // As many passes as make the slower side's sample last the minimum (the same count for both,
+    // so a pair compares equal work).
+    const double min_sample = quick_mode() ? 0.002 : 0.02;
+    const double one = std::max(seconds_of(1, ours), seconds_of(1, theirs));
+    const int passes = std::max(1, static_cast<int>(std::ceil(min_sample / std::max(one, 1e-9))));
+    std::vector<double> ratios;
+    for (auto _ : state) {
+        const bool ours_first = ratios.size() % 2 == 0;
+        double mine = 0, embree = 0;
+        if (ours_first) {
+            mine = seconds_of(passes, ours);
+            embree = seconds_of(passes, theirs);
+        } else {
+            embree = seconds_of(passes, theirs);
+            mine = seconds_of(passes, ours);
+        }
+        state.SetIterationTime(mine + embree);
+        ratios.push_back(embree / mine);
+    }
+    std::sort(ratios.begin(), ratios.end());
+    state.counters["ratio"] = quantile(ratios, 0.5);
+    state.counters["ratio_q1"] = quantile(ratios, 0.25);
+    state.counters["ratio_q3"] = quantile(ratios, 0.75);
+    state.counters["pairs"] = static_cast<double>(ratios.size());
+    state.counters["passes"] = passes;
+}
+
+/// The layouts the paired rows run: the wide ones and bvh:pair (the best layouts of the table).
+bool paired_layout(const std::string& spec) {
+    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh:pair,");
+}
+
+void register_paired(const std::vector<std::string>& scenes, const std::string& mesh) {
+    for (const std::string& spec : issue12_layout_specs()) {
+        if (!paired_layout(spec)) {
+            continue;
+        }
+        for (const std::string& scene : scenes) {
+            for (const bool wt : {false, true}) {
+                if (wt && scene != mesh) {
+                    continue;
+                }
+                for (RayKind k : issue_kinds) {
+                    const std::string name = "issue12/paired/" + spec +
+                                             (wt ? "/watertight/robust/" : "/default/plain/") +
+                                             scene + "/" + std::string(to_string(k)) + "/threads:1";
+                    benchmark::RegisterBenchmark(name.c_str(), bm_paired,
+                                                 Issue12Key{scene, spec, wt}, k)
+                        ->Unit(benchmark::kMillisecond)
+                        ->UseManualTime()
+                        ->Iterations(quick_mode() ? 3 : 21);
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 void rtlab::bench::register_issue12_embree_benchmarks() {
@@ -88,4 +207,5 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
                 ->Iterations(quick_mode() ? 1 : 5);
         }
     }
+    register_paired(scenes, mesh);
 }

@@ -45,17 +45,7 @@ benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b
     return b->MinTime(quick_mode() ? 0.01 : 0.2);
 }
 
-}  // namespace rtlab::bench
-
-namespace {
-
-using namespace rtlab;
-using namespace rtlab::bench;
-
-constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
-
-/// The structures of the suite: the BVH-family rows of bench_specs().
-std::vector<std::string> layout_specs() {
+std::vector<std::string> issue12_layout_specs() {
     std::vector<std::string> out;
     for (const std::string& s : bench_specs()) {
         if (s.starts_with("bvh")) {
@@ -65,18 +55,11 @@ std::vector<std::string> layout_specs() {
     return out;
 }
 
-struct TracerKey {
-    std::string scene;
-    std::string accel;
-    bool watertight = false;  ///< watertight triangle method and robust traversal
-    friend bool operator==(const TracerKey&, const TracerKey&) = default;
-};
-
-/// The tracer of the most recent key (benchmarks are registered grouped by key, so each tracer
-/// is built once; keeping one at a time bounds memory on the 1.65M-triangle flake).
-const SceneTracer& tracer(const TracerKey& key) {
+const SceneTracer& issue12_tracer(const Issue12Key& key) {
+    // Benchmarks are registered grouped by key, so each tracer is built once; keeping one at a
+    // time bounds memory on the 1.65M-triangle flake.
     static std::unique_ptr<SceneTracer> last;
-    static TracerKey last_key;
+    static Issue12Key last_key;
     if (!last || !(last_key == key)) {
         last.reset();
         TraceSetup setup;
@@ -91,11 +74,20 @@ const SceneTracer& tracer(const TracerKey& key) {
     return *last;
 }
 
-void bm_trace(benchmark::State& state, TracerKey key, RayKind kind, int threads) {
+}  // namespace rtlab::bench
+
+namespace {
+
+using namespace rtlab;
+using namespace rtlab::bench;
+
+constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
+
+void bm_trace(benchmark::State& state, Issue12Key key, RayKind kind, int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
     const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
-    const SceneTracer& t = tracer(key);
+    const SceneTracer& t = issue12_tracer(key);
     const TraversalStats st = time_and_count(state, t, rays, kind);
     const auto n = static_cast<double>(rays.size());
     const auto prims = static_cast<double>(t.primitive_count());
@@ -143,7 +135,7 @@ void rtlab::bench::register_issue12_benchmarks() {
     for (const std::string& s : issue12_sphere_scenes()) {
         scenes.push_back(s);
     }
-    for (const std::string& spec : layout_specs()) {
+    for (const std::string& spec : issue12_layout_specs()) {
         // Grouped by tracer: each (scene, structure, methods) is built once.
         for (const std::string& scene : scenes) {
             for (const bool wt : {false, true}) {
@@ -160,7 +152,7 @@ void rtlab::bench::register_issue12_benchmarks() {
                                                  scene + "/" + std::string(to_string(k)) +
                                                  "/threads:" + std::to_string(threads);
                         issue12_timing(benchmark::RegisterBenchmark(name.c_str(), bm_trace,
-                                                                    TracerKey{scene, spec, wt}, k,
+                                                                    Issue12Key{scene, spec, wt}, k,
                                                                     threads)
                                            ->UseRealTime());
                     }
