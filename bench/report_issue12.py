@@ -1,11 +1,14 @@
 """Issue 12's target table from an `rtlab_bench --suite issue12` run (bench/issue12_bench.cpp,
 bench/embree_issue12.cpp); used by report.py --suite issue12.
 
-Row names: issue12/trace/<accel>/<default|watertight>/<plain|robust>/<scene>/<kind>/threads:<k>
-and issue12/build/<accel>/<scene>/threads:<k>, where <accel> is a canonical registry spec or
-embree:<quality>. "Best rtlab layout" is the best over every registry spec in the run (all BVH
-layouts, binary and wide, whichever are registered); "binary" are the specs named bvh:...; a
-structure family is the spec name before its first ':' or ','.
+Row names: issue12/trace/<accel>/<default|watertight>/<plain|robust>/<scene>/<kind>/threads:<k>,
+issue12/build/<accel>/<scene>/threads:<k> and
+issue12/paired/<accel>/<default|watertight>/<plain|robust>/<scene>/<kind>/threads:1 (counters
+ratio, ratio_q1, ratio_q3: ours against Embree medium timed in alternation), where <accel> is a
+canonical registry spec or embree:<quality>. "Best rtlab layout" is the best over every registry
+spec in the run (all BVH layouts, binary and wide, whichever are registered) by paired ratio where
+the run has paired rows for that scene and kind, else by median rays/s; "binary" are the specs
+named bvh:...; a structure family is the spec name before its first ':' or ','.
 """
 import re
 
