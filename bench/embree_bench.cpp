@@ -103,16 +103,9 @@ const BuiltScene* run_embree_trace(benchmark::State& state,
         return nullptr;
     }
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
-    std::vector<float> t(rays.size());
-    std::vector<std::uint8_t> blocked(rays.size());
+    EmbreePass pass(rays.size());
     for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            built->scene->occluded(rays, blocked);
-            benchmark::DoNotOptimize(blocked.data());
-        } else {
-            built->scene->intersect(rays, t);
-            benchmark::DoNotOptimize(t.data());
-        }
+        pass.run(*built->scene, rays, kind);
     }
     const auto n = static_cast<double>(rays.size());
     state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);

@@ -94,28 +94,10 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     }
     const SceneTracer& t = issue12_tracer(key);
     const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    std::vector<float> et(rays.size());
-    std::vector<std::uint8_t> blocked(rays.size());
-    const auto ours = [&] {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits);
-            benchmark::DoNotOptimize(hits.data());
-        }
-    };
-    const auto theirs = [&] {
-        if (kind == RayKind::shadow) {
-            built->scene->occluded(rays, blocked);
-            benchmark::DoNotOptimize(blocked.data());
-        } else {
-            built->scene->intersect(rays, et);
-            benchmark::DoNotOptimize(et.data());
-        }
-    };
+    TracePass mine(rays.size());
+    EmbreePass embree(rays.size());
+    const auto ours = [&] { mine.run(t, rays, kind); };
+    const auto theirs = [&] { embree.run(*built->scene, rays, kind); };
     // As many passes as make the slower side's sample last the minimum (the same count for both,
     // so a pair compares equal work).
     const double min_sample = quick_mode() ? 0.002 : 0.02;
@@ -124,16 +106,16 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     std::vector<double> ratios;
     for (auto _ : state) {
         const bool ours_first = ratios.size() % 2 == 0;
-        double mine = 0, embree = 0;
+        double t_ours = 0, t_embree = 0;
         if (ours_first) {
-            mine = seconds_of(passes, ours);
-            embree = seconds_of(passes, theirs);
+            t_ours = seconds_of(passes, ours);
+            t_embree = seconds_of(passes, theirs);
         } else {
-            embree = seconds_of(passes, theirs);
-            mine = seconds_of(passes, ours);
+            t_embree = seconds_of(passes, theirs);
+            t_ours = seconds_of(passes, ours);
         }
-        state.SetIterationTime(mine + embree);
-        ratios.push_back(embree / mine);
+        state.SetIterationTime(t_ours + t_embree);
+        ratios.push_back(t_embree / t_ours);
     }
     std::sort(ratios.begin(), ratios.end());
     state.counters["ratio"] = quantile(ratios, 0.5);

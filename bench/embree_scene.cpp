@@ -1,6 +1,8 @@
 // EmbreeScene: geometry upload, build and per-ray queries through the Embree 3 C API.
 #include "bench/embree_scene.h"
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -192,6 +194,16 @@ void EmbreeScene::occluded(std::span<const Rayf> rays, std::span<std::uint8_t> b
                                   ray.tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
                           }
                       });
+}
+
+void EmbreePass::run(const EmbreeScene& e, std::span<const Rayf> rays, RayKind kind) {
+    if (kind == RayKind::shadow) {
+        e.occluded(rays, blocked);
+        benchmark::DoNotOptimize(blocked.data());
+    } else {
+        e.intersect(rays, t);
+        benchmark::DoNotOptimize(t.data());
+    }
 }
 
 std::size_t embree_primitive_count(const Scene& s) {

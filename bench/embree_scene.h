@@ -14,6 +14,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace benchmark {
 class State;
@@ -54,6 +55,15 @@ public:
 private:
     RTCScene scene_ = nullptr;
     std::int64_t bytes_ = 0;  ///< allocated bytes, as bytes()
+};
+
+/// One pass of an Embree scene over a ray set with its output buffers: occluded for shadow rays,
+/// intersect for the others.
+struct EmbreePass {
+    explicit EmbreePass(std::size_t n) : t(n), blocked(n) {}
+    void run(const EmbreeScene& e, std::span<const Rayf> rays, RayKind kind);
+    std::vector<float> t;
+    std::vector<std::uint8_t> blocked;
 };
 
 /// A committed Embree scene and the time its build took.

@@ -146,27 +146,29 @@ const SceneTracer& bench_tracer(const std::string& scene, const std::string& acc
     return *slot;
 }
 
+void TracePass::run(const SceneTracer& t,
+                    const std::vector<Rayf>& rays,
+                    RayKind kind,
+                    TraversalStats* stats) {
+    if (kind == RayKind::shadow) {
+        t.occluded(rays, blockers, stats);
+        benchmark::DoNotOptimize(blockers.data());
+    } else {
+        t.intersect(rays, hits, stats);
+        benchmark::DoNotOptimize(hits.data());
+    }
+}
+
 TraversalStats time_and_count(benchmark::State& state,
                               const SceneTracer& t,
                               const std::vector<Rayf>& rays,
                               RayKind kind) {
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
+    TracePass pass(rays.size());
     for (auto _ : state) {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits);
-            benchmark::DoNotOptimize(hits.data());
-        }
+        pass.run(t, rays, kind);
     }
     TraversalStats st;
-    if (kind == RayKind::shadow) {
-        t.occluded(rays, blockers, &st);
-    } else {
-        t.intersect(rays, hits, &st);
-    }
+    pass.run(t, rays, kind, &st);
     return st;
 }
 

@@ -52,6 +52,18 @@ std::vector<std::string> trace_scene_names();
 /// A SceneTracer for (scene, accel) with default methods, built once per process.
 const SceneTracer& bench_tracer(const std::string& scene, const std::string& accel);
 
+/// One pass of a tracer over a ray set with its output buffers: occluded for shadow rays,
+/// intersect for the others, counting into *stats when given.
+struct TracePass {
+    explicit TracePass(std::size_t n) : hits(n), blockers(n) {}
+    void run(const SceneTracer& t,
+             const std::vector<Rayf>& rays,
+             RayKind kind,
+             TraversalStats* stats = nullptr);
+    std::vector<Hit> hits;
+    std::vector<std::uint32_t> blockers;
+};
+
 /// Traces rays with t once per state iteration (occluded for shadow rays, intersect for the
 /// others; the timed loop), then once more counting; returns that pass's counts.
 TraversalStats time_and_count(benchmark::State& state,
