@@ -10,10 +10,10 @@
 //       row (the wide layouts and bvh:pair) against Embree medium, one thread, timed in
 //       alternation: each pair is one sample of ours and one of Embree's (order swapped from
 //       pair to pair), each sample one untimed pass over the rays, then enough timed passes to
-//       last >= 20 ms. Counters:
-//       ratio (median over the pairs of Embree's time / ours: our speed in Embree's), ratio_q1
-//       and ratio_q3 (quartiles), pairs, passes. A load burst on a shared machine slows both
-//       halves of a pair, so the ratio holds still where separate medians drift.
+//       last >= 20 ms. Counters: ratio (median over the pairs of Embree's time / ours: our speed
+//       in Embree's), ratio_q1 and ratio_q3 (quartiles), pairs, passes. A load burst on a shared
+//       machine slows both halves of a pair, so the ratio holds still where separate medians
+//       drift.
 #include "bench/benchmarks.h"
 #include "bench/embree_scene.h"
 #include "bench/trace_fixture.h"
