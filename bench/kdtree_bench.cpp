@@ -135,17 +135,8 @@ void bm_trace(benchmark::State& state, const std::string& scene, RayKind kind) {
     const auto& ts = tracers(scene);
     const std::vector<std::string> specs = kd_contenders();
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    std::vector<Hit> hits(rays.size());
-    std::vector<std::uint32_t> blockers(rays.size());
-    const auto pass = [&](const SceneTracer& t, TraversalStats* st) {
-        if (kind == RayKind::shadow) {
-            t.occluded(rays, blockers, st);
-            benchmark::DoNotOptimize(blockers.data());
-        } else {
-            t.intersect(rays, hits, st);
-            benchmark::DoNotOptimize(hits.data());
-        }
-    };
+    TracePass tp(rays.size());
+    const auto pass = [&](const SceneTracer& t, TraversalStats* st) { tp.run(t, rays, kind, st); };
     std::vector<std::vector<double>> secs(ts.size());
     std::vector<int> reps(ts.size(), 1);
     for (auto _ : state) {
