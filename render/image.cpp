@@ -106,8 +106,9 @@ void write_image(const Image& img, const std::filesystem::path& file, bool srgb)
     }
     const bool png = ext == ".png";
     RtlabOiioWrite* const write = oiio_writer(file);
+    // EXR takes the pixels as they are (three packed floats each); PNG their 8-bit values.
+    static_assert(sizeof(Vec3f) == 3 * sizeof(float));
     std::vector<std::uint8_t> bytes;
-    std::vector<float> values;
     if (png) {
         bytes.reserve(img.pixels.size() * 3);
         for (const Vec3f& p : img.pixels) {
@@ -115,13 +116,8 @@ void write_image(const Image& img, const std::filesystem::path& file, bool srgb)
                 bytes.push_back(quantise(srgb ? linear_to_srgb(p[c]) : p[c]));
             }
         }
-    } else {
-        values.reserve(img.pixels.size() * 3);
-        for (const Vec3f& p : img.pixels) {
-            values.insert(values.end(), {p.x, p.y, p.z});
-        }
     }
-    const void* pixels = png ? static_cast<const void*>(bytes.data()) : values.data();
+    const void* pixels = png ? static_cast<const void*>(bytes.data()) : img.pixels.data();
     write_atomically(file, [&](const std::filesystem::path& tmp) {
         // The temporary's extension is not an image one, so the format is named explicitly.
         char error[512];
