@@ -248,6 +248,12 @@ ParamSpec with_default(ParamSpec p, double value) {
 }
 const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
 const ParamSpec wide_ct = with_default(bvh_ct, 4);
+// A quantised node stores leaf counts in 16 bits.
+ParamSpec with_max(ParamSpec p, double value) {
+    p.max = value;
+    return p;
+}
+const ParamSpec qwide_max_leaf = with_max(wide_max_leaf, 65535);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
 // on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10); 32 bins,
 // leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that over 262,144 rays on the
@@ -296,6 +302,11 @@ const AccelEntry registry_rows[] = {
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
      {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
      &layout_row<&collapse_bvh<8>>},
+    {"bvh8q",
+     "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
+     "outward (128-byte nodes instead of 256)",
+     {from, leaves, leaf_align, qwide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     &layout_row<&quantize_bvh8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
      {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},

@@ -127,7 +127,8 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
 
 /// The layouts the paired rows run: the wide ones and bvh:pair (the best layouts of the table).
 bool paired_layout(const std::string& spec) {
-    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh:pair,");
+    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh8q,") ||
+           spec.starts_with("bvh:pair,");
 }
 
 void register_paired(const std::vector<std::string>& scenes, const std::string& mesh) {

@@ -1,6 +1,7 @@
-// Wide BVHs (BVH4, BVH8): the SIMD node test of every level the CPU runs against the scalar
-// clip_slabs, collapse from every binary builder, and every level's traversal against brute force
-// and against the other levels (same answers, same counts).
+// Wide BVHs (BVH4, BVH8, quantised BVH8): the SIMD node test of every level the CPU runs against
+// the scalar clip_slabs, quantisation's enclosing boxes, collapse from every binary builder, and
+// every level's traversal against brute force and against the other levels (same answers, same
+// counts).
 
 #include "accel/bvh/wide_bvh.h"
 
@@ -15,6 +16,8 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,10 +35,10 @@ std::vector<SimdLevel> runnable_levels() {
     return out;
 }
 
-/// wide_node_hits of level l.
-template <bool IsRobust, unsigned N>
+/// wide_node_hits of level l (Node: WideNode<N> or QWideNode8).
+template <bool IsRobust, class Node>
 unsigned node_hits_at(
-    SimdLevel l, const WideNode<N>& n, const SlabRay<float>& r, float tmin, float tmax, float* tn) {
+    SimdLevel l, const Node& n, const SlabRay<float>& r, float tmin, float tmax, float* tn) {
     switch (l) {
     case SimdLevel::avx512:
         return simd_avx512::wide_node_hits<IsRobust>(n, r, tmin, tmax, tn);
@@ -47,48 +50,87 @@ unsigned node_hits_at(
     return simd_sse2::wide_node_hits<IsRobust>(n, r, tmin, tmax, tn);
 }
 
-template <bool IsRobust, unsigned N>
-void check_node_test(const test::Soup& soup, const std::vector<Rayf>& rays) {
-    // Nodes of N consecutive soup boxes (empty boxes included: they must miss).
-    for (std::size_t first = 0; first + N <= soup.boxes.size(); first += N) {
-        WideNode<N> node = WideNode<N>::empty();
-        for (unsigned i = 0; i < N; ++i) {
-            const Bounds3f& b = soup.boxes[first + i];
-            node.set(i, b, 0, 0);
+/// Every level's node test of `node` against clip_slabs<IsRobust> on node.bounds(i) of the
+/// slots in `slots`, per ray: the same hit slots and bit-identical entry distances.
+template <bool IsRobust, class Node>
+void check_node_hits(const Node& node, unsigned slots, const std::vector<Rayf>& rays) {
+    constexpr unsigned N = Node::width;
+    for (const Rayf& ray : rays) {
+        if (!is_valid(ray)) {
+            continue;
         }
-        for (const Rayf& ray : rays) {
-            if (!is_valid(ray)) {
-                continue;
+        const SlabRay<float> sr(ray);
+        unsigned want = 0;
+        float want_t[N] = {};
+        for (unsigned i = 0; i < N; ++i) {
+            float t0 = ray.tmin, t1 = ray.tmax;
+            const Bounds3f b = node.bounds(i);
+            if (((slots >> i) & 1u) && clip_slabs<IsRobust>(b.lo, b.hi, sr, t0, t1)) {
+                want |= 1u << i;
+                want_t[i] = t0;
             }
-            const SlabRay<float> sr(ray);
-            unsigned want = 0;
-            float want_t[N];
+        }
+        for (const SimdLevel l : runnable_levels()) {
+            CAPTURE(simd_name(l));
+            alignas(32) float tn[N];
+            const unsigned got = node_hits_at<IsRobust>(l, node, sr, ray.tmin, ray.tmax, tn);
+            REQUIRE(got == want);
             for (unsigned i = 0; i < N; ++i) {
-                float t0 = ray.tmin, t1 = ray.tmax;
-                const Bounds3f b = node.bounds(i);
-                if (clip_slabs<IsRobust>(b.lo, b.hi, sr, t0, t1)) {
-                    want |= 1u << i;
-                    want_t[i] = t0;
-                }
-            }
-            for (const SimdLevel l : runnable_levels()) {
-                CAPTURE(simd_name(l), first);
-                alignas(32) float tn[N];
-                const unsigned got = node_hits_at<IsRobust>(l, node, sr, ray.tmin, ray.tmax, tn);
-                REQUIRE(got == want);
-                for (unsigned i = 0; i < N; ++i) {
-                    if ((want >> i) & 1u) {
-                        // Bit-identical entry distances.
-                        REQUIRE(std::bit_cast<std::uint32_t>(tn[i]) ==
-                                std::bit_cast<std::uint32_t>(want_t[i]));
-                    }
+                if ((want >> i) & 1u) {
+                    REQUIRE(std::bit_cast<std::uint32_t>(tn[i]) ==
+                            std::bit_cast<std::uint32_t>(want_t[i]));
                 }
             }
         }
     }
 }
 
-TEST_CASE("the SIMD node test of every level equals clip_slabs bit for bit", "[accel][wide]") {
+/// Each quantised slot encloses its box with the tightest codes: one code inward would not.
+void check_quantised(const WideNode<8>& n, const QWideNode8& q) {
+    for (unsigned i = 0; i < 8; ++i) {
+        REQUIRE((((q.occupied >> i) & 1u) != 0) == n.occupied(i));
+        if (!n.occupied(i) || n.bounds(i).empty()) {
+            continue;
+        }
+        CAPTURE(i);
+        REQUIRE(q.bounds(i).contains(n.bounds(i)));
+        for (unsigned a = 0; a < 3; ++a) {
+            const std::uint8_t lo = q.q[0][a][i], hi = q.q[1][a][i];
+            if (q.scale[a] > 0.0f) {
+                CHECK((lo == 255 || q.plane(a, static_cast<std::uint8_t>(lo + 1)) > n.lo[a][i]));
+                CHECK((hi == 0 || q.plane(a, static_cast<std::uint8_t>(hi - 1)) < n.hi[a][i]));
+            }
+        }
+    }
+}
+
+/// Nodes of N consecutive soup boxes: a WideNode (empty boxes included: they must miss), and
+/// for N = 8 its quantised copy (non-empty boxes only) against clip_slabs on dequantised boxes.
+template <bool IsRobust, unsigned N>
+void check_node_test(const test::Soup& soup, const std::vector<Rayf>& rays) {
+    for (std::size_t first = 0; first + N <= soup.boxes.size(); first += N) {
+        CAPTURE(first);
+        WideNode<N> node = WideNode<N>::empty();
+        WideNode<N> filled = WideNode<N>::empty();
+        unsigned used = 0;
+        for (unsigned i = 0; i < N; ++i) {
+            const Bounds3f& b = soup.boxes[first + i];
+            node.set(i, b, 0, 0);
+            if (!b.empty()) {
+                filled.set(used++, b, 0, 0);
+            }
+        }
+        check_node_hits<IsRobust>(node, (1u << N) - 1, rays);
+        if constexpr (N == 8) {
+            const QWideNode8 q = quantize_wide_node(filled);
+            check_quantised(filled, q);
+            check_node_hits<IsRobust>(q, q.occupied, rays);
+        }
+    }
+}
+
+TEST_CASE("the SIMD node test of every level equals clip_slabs bit for bit, quantised too",
+          "[accel][wide]") {
     const auto seed = GENERATE(take(3, random(0u, 1u << 30)));
     const test::Soup soup = test::random_soup(test::SoupKind::boxes, seed, 256);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
@@ -101,6 +143,33 @@ TEST_CASE("the SIMD node test of every level equals clip_slabs bit for bit", "[a
     const std::vector<Rayf> lrays = test::random_rays(lattice, seed, 300);
     check_node_test<false, 8>(lattice, lrays);
     check_node_test<true, 8>(lattice, lrays);
+}
+
+TEST_CASE("quantised nodes enclose extreme boxes tightly", "[accel][wide]") {
+    const float big = std::numeric_limits<float>::max();
+    const float tiny = std::numeric_limits<float>::denorm_min();
+    const Bounds3f cases[][2] = {
+        // Extents that overflow hi - lo, denormal and one-ulp boxes, flat axes.
+        {{{-big, -big, -big}, {-1e38f, 0.0f, 1.0f}}, {{1e38f, 2.0f, 3.0f}, {big, big, big}}},
+        {{{0.0f, 0.0f, 0.0f}, {tiny, tiny, 0.0f}},
+         {{2 * tiny, 0.0f, 0.0f}, {5 * tiny, 0.0f, 0.0f}}},
+        {{{1e6f, -1.0f, 7.0f}, {std::nextafter(1e6f, 2e6f), 1.0f, 7.0f}},
+         {{std::nextafter(1e6f, 2e6f), -1.0f, 7.0f}, {std::nextafter(1e6f, 2e6f), 1.0f, 7.0f}}},
+        {{{-3.0f, 1e-30f, -1e30f}, {-2.0f, 2e-30f, 1e30f}},
+         {{5.0f, 1e-30f, 0.0f}, {6.0f, 1e-30f, 1e30f}}},
+    };
+    for (const auto& c : cases) {
+        WideNode<8> n = WideNode<8>::empty();
+        n.set(0, c[0], 7, 1);
+        n.set(1, c[1], 9, 0);
+        const QWideNode8 q = quantize_wide_node(n);
+        check_quantised(n, q);
+        CHECK(q.occupied == 3u);
+        CHECK((q.child[0] == 7 && q.count[0] == 1 && q.child[1] == 9 && q.count[1] == 0));
+    }
+    WideNode<8> n = WideNode<8>::empty();
+    n.set(0, {{0, 0, 0}, {1, 1, 1}}, 0, 70000);
+    CHECK_THROWS_AS(quantize_wide_node(n), std::invalid_argument);
 }
 
 TEST_CASE("the 8-lane child order network sorts like lane_order_key", "[accel][wide][simd]") {
@@ -145,7 +214,7 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
     for (const char* from : {"binned", "sweep", "median", "lbvh"}) {
         const AnyAccel binary = build_accel(std::string("bvh:") + from, soup.input());
         const AccelInfo bi = accel_info(binary);
-        for (const char* wide : {"bvh4", "bvh8"}) {
+        for (const char* wide : {"bvh4", "bvh8", "bvh8q"}) {
             CAPTURE(from, wide);
             // The binary rows' leaf bound and traversal cost (the wide rows default to larger).
             const AnyAccel w =
@@ -164,7 +233,7 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
 TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") {
     // Deep enough that the subtrees below the serial top levels are collapsed by parallel tasks.
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 20000);
-    for (const std::string wide : {"bvh4", "bvh8"}) {
+    for (const std::string wide : {"bvh4", "bvh8", "bvh8q"}) {
         CAPTURE(wide);
         const std::string spec = wide + ",max_leaf=4,ct=1,threads=";
         const AnyAccel one = build_accel(spec + "1", soup.input());
@@ -198,6 +267,20 @@ TEST_CASE("wide BVH validate() finds broken invariants", "[accel][wide]") {
     b = good;
     b.nodes[child].child[1] = WideNode<8>::empty_slot;
     CHECK(!b.validate().empty());
+    // Quantised copies: one per node, the same children, boxes enclosing the nodes'.
+    WideBvh<8> q = std::get<WideBvh<8>>(build_accel("bvh8q", soup.input()));
+    REQUIRE(q.nodes == good.nodes);
+    REQUIRE(q.qnodes.size() == good.nodes.size());
+    REQUIRE(q.validate().empty());
+    b = q;
+    b.qnodes.pop_back();
+    CHECK(b.validate().find("quantised nodes") != std::string::npos);
+    b = q;
+    b.qnodes[0].count[0] = static_cast<std::uint16_t>(b.qnodes[0].count[0] + 1);
+    CHECK(b.validate().find("differs") != std::string::npos);
+    b = q;
+    b.qnodes[0].scale[0] *= 0.5f;  // planes pulled inward
+    CHECK(b.validate().find("enclose") != std::string::npos);
 }
 
 TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with the others",
@@ -208,7 +291,8 @@ TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with th
     CAPTURE(static_cast<int>(kind), count, seed);
     const test::Soup soup = test::random_soup(kind, seed, count);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
-    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
+    for (const char* spec :
+         {"bvh4", "bvh8", "bvh8q", "bvh8,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
         CAPTURE(spec);
         const AnyAccel accel = build_accel(spec, soup.input());
         REQUIRE(accel_validate(accel).empty());

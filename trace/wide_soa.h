@@ -52,21 +52,19 @@ inline constexpr bool is_wide_bvh<WideBvh<N>> = true;
 template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, class R, StatsSink S>
 SoaFound<IsAnyHit> wide_soa_trace(
     const WideBvh<N>& bvh, const TriangleSoA& q, R& ray, const WatertightRay<float>* wr, S& stats) {
-    const auto started = bvh.start(ray, stats);
-    if (!started) {
-        return std::nullopt;
-    }
-    const WideView<N>& view = *started;
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr,
-                                                                             stats);
-    case SimdLevel::avx2:
-        return simd_avx2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr, stats);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr, stats);
+    return bvh.visit(ray, stats, SoaFound<IsAnyHit>{}, [&](const auto& view) {
+        switch (simd_level()) {
+        case SimdLevel::avx512:
+            return simd_avx512::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr,
+                                                                                 stats);
+        case SimdLevel::avx2:
+            return simd_avx2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr,
+                                                                               stats);
+        case SimdLevel::sse2:
+            break;
+        }
+        return simd_sse2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr, stats);
+    });
 }
 
 /// As wide_soa_trace for spheres: SphereStable<float> with the ray's set-up rd on leaf data q in
@@ -74,20 +72,17 @@ SoaFound<IsAnyHit> wide_soa_trace(
 template <bool IsAnyHit, bool IsRobust, unsigned N, class R, StatsSink S>
 SoaFound<IsAnyHit> wide_sphere_trace(
     const WideBvh<N>& bvh, const SphereSoA& q, R& ray, const SphereRay<float>& rd, S& stats) {
-    const auto started = bvh.start(ray, stats);
-    if (!started) {
-        return std::nullopt;
-    }
-    const WideView<N>& view = *started;
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
-    case SimdLevel::avx2:
-        return simd_avx2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+    return bvh.visit(ray, stats, SoaFound<IsAnyHit>{}, [&](const auto& view) {
+        switch (simd_level()) {
+        case SimdLevel::avx512:
+            return simd_avx512::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+        case SimdLevel::avx2:
+            return simd_avx2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+        case SimdLevel::sse2:
+            break;
+        }
+        return simd_sse2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+    });
 }
 
 }  // namespace rtlab

@@ -25,7 +25,8 @@ template <unsigned N>
 AccelInfo WideBvh<N>::info() const {
     AccelInfo info;
     info.nodes = nodes.size();
-    info.bytes = nodes.size() * sizeof(WideNode<N>) + prim_ids.size() * sizeof(std::uint32_t);
+    info.bytes = nodes.size() * sizeof(WideNode<N>) + qnodes.size() * sizeof(QWideNode8) +
+                 prim_ids.size() * sizeof(std::uint32_t);
     info.bytes_per_prim =
         prim_count == 0 ? 0.0 : static_cast<double>(info.bytes) / static_cast<double>(prim_count);
     info.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
@@ -128,7 +129,37 @@ std::string WideBvh<N>::validate() const {
     if (std::string e = walk.unreached(); !e.empty()) {
         return e;
     }
+    if (std::string e = validate_quantized(); !e.empty()) {
+        return e;
+    }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);
+}
+
+template <unsigned N>
+std::string WideBvh<N>::validate_quantized() const {
+    if (qnodes.empty()) {
+        return {};
+    }
+    if (N != 8 || qnodes.size() != nodes.size()) {
+        return "quantised nodes: " + std::to_string(qnodes.size()) + " for " +
+               std::to_string(nodes.size()) + " nodes of width " + std::to_string(N);
+    }
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+        const WideNode<N>& n = nodes[k];
+        const QWideNode8& q = qnodes[k];
+        for (unsigned i = 0; i < N; ++i) {
+            const std::string slot =
+                "quantised node " + std::to_string(k) + " slot " + std::to_string(i) + ": ";
+            const bool occupied = ((q.occupied >> i) & 1u) != 0;
+            if (occupied != n.occupied(i) || q.child[i] != n.child[i] || q.count[i] != n.count[i]) {
+                return slot + "child, count or occupancy differs from the node's";
+            }
+            if (occupied && !q.bounds(i).contains(n.bounds(i))) {
+                return slot + "dequantised box does not enclose the node's box";
+            }
+        }
+    }
+    return {};
 }
 
 template struct WideBvh<4>;

@@ -5,7 +5,8 @@
 // Traversal clips the ray against all N child boxes with one SIMD slab test (accel/bvh/
 // wide_kernels.h, compiled for SSE2, AVX2 and AVX-512 and chosen per call by base/simd.h), visits
 // the hit children near to far by entry distance, skips popped entries beyond the shrunk tmax and
-// stops at the first any-hit. Leaf slots index prim_ids in the binary build's leaf order.
+// stops at the first any-hit. Leaf slots index prim_ids in the binary build's leaf order. A BVH8
+// may carry quantised copies of its nodes (quantize_bvh8, the bvh8q row), which traversal reads.
 
 #include "accel/accel.h"
 #include "accel/bvh/bvh.h"
@@ -27,7 +28,10 @@ template <unsigned N>
 struct WideBvh {
     static constexpr unsigned width = N;
 
-    LargeVector<WideNode<N>> nodes;        ///< root at 0; empty when no box was usable
+    LargeVector<WideNode<N>> nodes;  ///< root at 0; empty when no box was usable
+    /// BVH8 only, empty unless quantised (quantize_bvh8): nodes quantised one for one, which
+    /// traversal then reads instead of `nodes` (kept for bounds, info and validate).
+    LargeVector<QWideNode8> qnodes;
     std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
@@ -73,51 +77,67 @@ struct WideBvh {
     /// Empty when every invariant holds (each usable primitive referenced once, leaves of at
     /// most max_leaf_size primitives covering every slot but padding slots, occupied slots first
     /// with non-empty boxes, every child box inside its parent slot's box, inner nodes other than
-    /// the root with at least two children, every node reached once, depth <= 64); else the first
+    /// the root with at least two children, every node reached once, depth <= 64, and any
+    /// quantised nodes one per node with the same children and enclosing boxes); else the first
     /// violation.
     std::string validate() const;
 
     friend bool operator==(const WideBvh&, const WideBvh&) = default;
 
-    /// What traversal reads, after the checks every query starts with: nullopt for an invalid
-    /// ray (not counted) or an empty structure (counted as a ray).
-    template <StatsSink S>
-    std::optional<WideView<N>> start(const Rayf& ray, S& stats) const {
+    /// f(view) with what traversal reads (the quantised nodes when there are any), after the
+    /// checks every query starts with; `none` for an invalid ray (not counted) or an empty
+    /// structure (counted as a ray).
+    template <class T, StatsSink S, class F>
+    T visit(const Rayf& ray, S& stats, T none, F&& f) const {
         if (!is_valid(ray)) {
-            return std::nullopt;
+            return none;
         }
         stats.count_ray();
         if (nodes.empty()) {
-            return std::nullopt;
+            return none;
         }
-        return WideView<N>{nodes.data(), prim_ids.data(),
-                           nodes.size() * sizeof(WideNode<N>) >= prefetch_min_bytes};
+        if constexpr (N == 8) {
+            if (!qnodes.empty()) {
+                return f(view_of(qnodes));
+            }
+        }
+        return f(view_of(nodes));
     }
 
 private:
+    /// validate()'s part for qnodes: one per node, the same children, boxes enclosing theirs.
+    std::string validate_quantized() const;
+
+    template <class Node>
+    WideViewOf<Node> view_of(const LargeVector<Node>& ns) const {
+        return {ns.data(), prim_ids.data(), ns.size() * sizeof(Node) >= prefetch_min_bytes};
+    }
+
     template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
     bool dispatch(R& ray, F& hit_fn, S& stats) const {
-        const auto started = start(ray, stats);
-        if (!started) {
-            return false;
-        }
-        const WideView<N>& view = *started;
-        switch (simd_level()) {
-        case SimdLevel::avx512:
-            return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,
-                                                                           stats);
-        case SimdLevel::avx2:
-            return simd_avx2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
-        case SimdLevel::sse2:
-            break;
-        }
-        return simd_sse2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
+        return visit(ray, stats, false, [&](const auto& view) {
+            switch (simd_level()) {
+            case SimdLevel::avx512:
+                return simd_avx512::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,
+                                                                               stats);
+            case SimdLevel::avx2:
+                return simd_avx2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn,
+                                                                             stats);
+            case SimdLevel::sse2:
+                break;
+            }
+            return simd_sse2::wide_traverse<IsAnyHit, IsRobust, ByRange>(view, ray, hit_fn, stats);
+        });
     }
 };
 
 /// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp).
 template <unsigned N>
 WideBvh<N> collapse_bvh(const Bvh& binary);
+
+/// The BVH8 of collapse_bvh<8>(binary) with its nodes quantised (qnodes; accel/bvh/
+/// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
+WideBvh<8> quantize_bvh8(const Bvh& binary);
 
 extern template struct WideBvh<4>;
 extern template struct WideBvh<8>;

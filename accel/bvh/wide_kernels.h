@@ -12,16 +12,21 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 namespace rtlab {
 
-/// What traversal reads of a WideBvh: its nodes and leaf slots.
-template <unsigned N>
-struct WideView {
-    const WideNode<N>* nodes;
+/// What traversal reads of a WideBvh: its nodes (WideNode<N>, or QWideNode8 for a quantised
+/// BVH8) and leaf slots.
+template <class Node>
+struct WideViewOf {
+    const Node* nodes;
     const std::uint32_t* prim_ids;
     bool prefetch;  ///< prefetch hit children (nodes of at least prefetch_min_bytes)
 };
+
+template <unsigned N>
+using WideView = WideViewOf<WideNode<N>>;
 
 /// A traversal stack entry: a child slot's reference and count (as in WideNode) and the entry
 /// distance its box test gave.

@@ -5,6 +5,7 @@
 
 #include "intersect/bounds.h"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace rtlab {
@@ -16,6 +17,7 @@ namespace rtlab {
 template <unsigned N>
 struct alignas(64) WideNode {
     static_assert(N == 4 || N == 8, "wide nodes hold 4 or 8 children");
+    static constexpr unsigned width = N;
     static constexpr std::uint32_t empty_slot = 0xffffffffu;
 
     float lo[3][N];          ///< lo[axis][slot]: child box minima
@@ -42,6 +44,11 @@ struct alignas(64) WideNode {
         count[i] = n;
     }
 
+    /// Byte offset of the row of N planes on `axis`: minima (side 0) or maxima (side 1).
+    static constexpr std::size_t plane_row(unsigned side, unsigned axis) {
+        return (side == 0 ? offsetof(WideNode, lo) : offsetof(WideNode, hi)) + axis * sizeof(lo[0]);
+    }
+
     /// The box of slot i.
     Bounds3f bounds(unsigned i) const {
         return {{lo[0][i], lo[1][i], lo[2][i]}, {hi[0][i], hi[1][i], hi[2][i]}};
@@ -55,5 +62,47 @@ struct alignas(64) WideNode {
 };
 
 static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
+
+/// A WideNode<8> with its child boxes quantised to one byte per plane on a per-node grid (Ylitie,
+/// Karras & Laine 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs";
+/// Embree's compressed BVH8 nodes): 128 bytes, two cache lines where WideNode<8> takes four. Plane
+/// k of an axis lies at origin + k * scale (float operations, rounded as written), and every slot's
+/// planes enclose its WideNode box (quantize_wide_node rounds outward and checks each value), so a
+/// slab test of the dequantised box misses only what the exact box misses.
+struct alignas(64) QWideNode8 {
+    static constexpr unsigned width = 8;
+    static constexpr std::uint32_t empty_slot = WideNode<8>::empty_slot;
+
+    float origin[3];          ///< the grid's origin (the node's box minimum)
+    float scale[3];           ///< the grid's step per axis (>= 0)
+    std::uint8_t q[2][3][8];  ///< q[side][axis][slot]: plane codes, minima then maxima
+    std::uint32_t child[8];   ///< as WideNode<8>::child
+    std::uint16_t count[8];   ///< as WideNode<8>::count
+    std::uint8_t occupied;    ///< bit i set when slot i holds a child
+    std::uint8_t pad[7];
+
+    /// The plane of code k on `axis`, exactly as traversal's lanes compute it.
+    float plane(unsigned axis, std::uint8_t k) const {
+        return origin[axis] + static_cast<float>(k) * scale[axis];
+    }
+    /// The dequantised box of slot i (encloses the WideNode box it was made from).
+    Bounds3f bounds(unsigned i) const {
+        return {{plane(0, q[0][0][i]), plane(1, q[0][1][i]), plane(2, q[0][2][i])},
+                {plane(0, q[1][0][i]), plane(1, q[1][1][i]), plane(2, q[1][2][i])}};
+    }
+    /// Byte offset of the row of 8 plane codes on `axis`, minima (side 0) or maxima (side 1).
+    static constexpr std::size_t plane_row(unsigned side, unsigned axis) {
+        return offsetof(QWideNode8, q) + (side * 3 + axis) * 8;
+    }
+
+    friend bool operator==(const QWideNode8&, const QWideNode8&) = default;
+};
+
+static_assert(sizeof(QWideNode8) == 128);
+
+/// n quantised: the tightest codes whose planes enclose each occupied slot's box on a grid from
+/// the node's box minimum with 255 steps reaching its maximum; throws std::invalid_argument for a
+/// leaf of more than 65535 primitives (the count field's range).
+QWideNode8 quantize_wide_node(const WideNode<8>& n);
 
 }  // namespace rtlab
