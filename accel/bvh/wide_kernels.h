@@ -25,9 +25,6 @@ struct WideViewOf {
     bool prefetch;  ///< prefetch hit children (nodes of at least prefetch_min_bytes)
 };
 
-template <unsigned N>
-using WideView = WideViewOf<WideNode<N>>;
-
 /// A traversal stack entry: a child slot's reference and count (as in WideNode) and the entry
 /// distance its box test gave.
 struct WideEntry {

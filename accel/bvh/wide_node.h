@@ -71,7 +71,6 @@ static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
 /// slab test of the dequantised box misses only what the exact box misses.
 struct alignas(64) QWideNode8 {
     static constexpr unsigned width = 8;
-    static constexpr std::uint32_t empty_slot = WideNode<8>::empty_slot;
 
     float origin[3];          ///< the grid's origin (the node's box minimum)
     float scale[3];           ///< the grid's step per axis (>= 0)
