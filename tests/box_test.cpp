@@ -42,6 +42,13 @@ void check_sane(const std::optional<PrimHit<T>>& h, const Ray<T>& r) {
     }
 }
 
+/// clip_slabs_ahead (robust traversal's test for windows from tmin >= 0) on b for r's window.
+bool ahead_hits(const Bounds3f& b, const Rayf& r) {
+    const SlabRay<float> sr(r);
+    float t0 = r.tmin, t1 = r.tmax;
+    return clip_slabs_ahead(b.lo, b.hi, sr, PaddedInv<float>(sr), t0, t1);
+}
+
 }  // namespace
 
 TEST_CASE("slabs: entry t, inside origin, window", "[intersect][box]") {
@@ -174,7 +181,8 @@ TEST_CASE("slabs: fast and robust agree away from the boundary", "[intersect][bo
 TEST_CASE("slabs_robust never misses a box the exact ray grazes", "[intersect][box]") {
     // Rays that run inside a face plane (origin on the plane, zero normal component) or leave a
     // box exactly at an edge, for boxes whose faces are not simple powers of two; the exact ray
-    // touches the closed box in every case, so the robust method must report a hit.
+    // touches the closed box in every case, so the robust method must report a hit, and so must
+    // clip_slabs_ahead for the windows from tmin = 0.
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> uni(-2.0f, 2.0f);
     int tested = 0;
@@ -200,6 +208,7 @@ TEST_CASE("slabs_robust never misses a box the exact ray grazes", "[intersect][b
         if (exact) {
             ++tested;
             CHECK(AabbSlabsRobust<float>::intersect(box, r));
+            CHECK(ahead_hits(box, r));
         }
         // In a face plane: origin with y = lo.y exactly, zero y direction.
         const Rayf in_plane{{org.x, lo.y, org.z}, {target.x - org.x, 0.0f, target.z - org.z}};
@@ -208,6 +217,7 @@ TEST_CASE("slabs_robust never misses a box the exact ray grazes", "[intersect][b
                                 .has_value();
         if (exact2) {
             CHECK(AabbSlabsRobust<float>::intersect(box, in_plane));
+            CHECK(ahead_hits(box, in_plane));
         }
         // A window with tmin < 0 and the box behind the origin (the sign-aware padding).
         const Rayf back{target + (target - org), target - org, -2.0f, 0.0f};

@@ -68,6 +68,53 @@ bool clip_slabs(const Vec3<T>& lo, const Vec3<T>& hi, const SlabRay<T>& r, T& t0
     return true;
 }
 
+/// The reciprocals of clip_slabs_ahead: inv_dir times the outward padding factors of
+/// clip_slabs<true>, shrink (1 - 2 gamma(3)) for near distances and grow (1 + 2 gamma(3)) for far
+/// ones, made once per ray.
+template <class T>
+struct PaddedInv {
+    Vec3<T> near;
+    Vec3<T> far;
+
+    explicit PaddedInv(const SlabRay<T>& r) {
+        constexpr T grow = T(1) + T(2) * gamma_bound<T>(3);
+        constexpr T shrink = T(1) - T(2) * gamma_bound<T>(3);
+        for (std::size_t a = 0; a < 3; ++a) {
+            near[a] = r.inv_dir[a] * shrink;
+            far[a] = r.inv_dir[a] * grow;
+        }
+    }
+};
+
+/// clip_slabs<true> for windows with t0 >= 0, the padding folded into the reciprocals (one
+/// multiplication per distance, as the plain test; Embree's robust traversal scales its far
+/// reciprocal likewise). A computed distance is the exact one times its factor and at most four
+/// roundings (reciprocal, folding, difference, product), and (1 - 2 gamma(3)) (1 + gamma(4)) < 1 <
+/// (1 + 2 gamma(3)) (1 - gamma(4)), so a positive near distance stays below the exact one and a
+/// positive far one above it; signs are exact, and from t0 >= 0 on a negative near distance loses
+/// to t0 and a negative far one empties the window, as exactly. Conservative like clip_slabs<true>
+/// (under the same assumption: no reciprocal in the subnormal range), but not bit-identical to it.
+template <class T>
+bool clip_slabs_ahead(const Vec3<T>& lo,
+                      const Vec3<T>& hi,
+                      const SlabRay<T>& r,
+                      const PaddedInv<T>& pi,
+                      T& t0,
+                      T& t1) {
+    for (std::size_t a = 0; a < 3; ++a) {
+        const T near_plane = r.neg[a] ? hi[a] : lo[a];
+        const T far_plane = r.neg[a] ? lo[a] : hi[a];
+        const T tn = (near_plane - r.org[a]) * pi.near[a];
+        const T tf = (far_plane - r.org[a]) * pi.far[a];
+        t0 = tn > t0 ? tn : t0;  // NaN keeps the interval, as in clip_slabs
+        t1 = tf < t1 ? tf : t1;
+        if (t0 > t1) {
+            return false;
+        }
+    }
+    return true;
+}
+
 /// True when the ray's window [tmin, tmax] meets the closed box b; tnear receives the entry t.
 template <bool IsRobust = false, class T>
 bool slab_hit(const Bounds3<T>& b, const SlabRay<T>& r, T tmin, T tmax, T& tnear) {
