@@ -8,6 +8,7 @@ bvh:binned. Usage:
       --benchmark_out_format=json
   python3 bench/report_kdtree.py kd.json >> table.md
 """
+import argparse
 import json
 import sys
 
@@ -30,7 +31,18 @@ def split_counters(bench):
 
 
 def main():
-    data = json.load(open(sys.argv[1]))
+    parser = argparse.ArgumentParser(
+        description="Issue 16's kd-tree table (Markdown, on stdout) from rtlab_bench --suite "
+        "kdtree JSON output.")
+    parser.add_argument("json", help="the --benchmark_out file of rtlab_bench --suite kdtree")
+    args = parser.parse_args()
+    try:
+        with open(args.json) as f:
+            data = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"report_kdtree.py: {args.json}: {e}")
+    if not isinstance(data, dict) or not isinstance(data.get("benchmarks"), list):
+        sys.exit(f"report_kdtree.py: {args.json}: no 'benchmarks' list (not rtlab_bench JSON)")
     trace = [b for b in data["benchmarks"] if b["name"].startswith("kdtree/trace/")]
     build = [b for b in data["benchmarks"] if b["name"].startswith("kdtree/build/")]
     if trace:
