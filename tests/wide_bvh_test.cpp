@@ -1,7 +1,7 @@
 // Wide BVHs (BVH4, BVH8, quantised BVH8): the SIMD node test of every level the CPU runs against
-// the scalar clip_slabs, quantisation's enclosing boxes, collapse from every binary builder, and
-// every level's traversal against brute force and against the other levels (same answers, same
-// counts).
+// the scalar slab test traversal uses, quantisation's enclosing boxes, collapse from every binary
+// builder, and every level's traversal against brute force and against the other levels (same
+// answers, same counts).
 
 #include "accel/bvh/wide_bvh.h"
 
@@ -111,7 +111,8 @@ void check_quantised(const WideNode<8>& n, const QWideNode8& q) {
 }
 
 /// Nodes of N consecutive soup boxes: a WideNode (empty boxes included: they must miss), and
-/// for N = 8 its quantised copy (non-empty boxes only) against clip_slabs on dequantised boxes.
+/// for N = 8 its quantised copy (non-empty boxes only) on its dequantised boxes, through
+/// check_node_hits.
 template <bool IsRobust, unsigned N>
 void check_node_test(const test::Soup& soup, const std::vector<Rayf>& rays) {
     for (std::size_t first = 0; first + N <= soup.boxes.size(); first += N) {

@@ -225,8 +225,8 @@ inline int PairBvh::test(
         __m128 far_t = select(neg, t, swapped);
         if constexpr (IsRobust) {
             // As clip_slabs<true>: widen both outward by 2*gamma(3), sign-aware.
-            const __m128 grow = _mm_set1_ps(1.0f + 2.0f * gamma_bound<float>(3));
-            const __m128 shrink = _mm_set1_ps(1.0f - 2.0f * gamma_bound<float>(3));
+            const __m128 grow = _mm_set1_ps(slab_grow<float>);
+            const __m128 shrink = _mm_set1_ps(slab_shrink<float>);
             near_t = _mm_mul_ps(near_t, select(_mm_cmpgt_ps(near_t, none), shrink, grow));
             far_t = _mm_mul_ps(far_t, select(_mm_cmpgt_ps(far_t, none), grow, shrink));
         }

@@ -23,6 +23,13 @@ constexpr T gamma_bound(int n) {
     return static_cast<T>(n) * e / (T(1) - static_cast<T>(n) * e);
 }
 
+/// The outward padding of the robust slab tests (2 gamma(3), relative): far distances grow by
+/// slab_grow, near ones shrink by slab_shrink.
+template <class T>
+inline constexpr T slab_grow = T(1) + T(2) * gamma_bound<T>(3);
+template <class T>
+inline constexpr T slab_shrink = T(1) - T(2) * gamma_bound<T>(3);
+
 /// A ray prepared for many slab tests: origin, reciprocal direction and direction signs.
 template <class T>
 struct SlabRay {
@@ -52,10 +59,8 @@ bool clip_slabs(const Vec3<T>& lo, const Vec3<T>& hi, const SlabRay<T>& r, T& t0
             // 2*gamma(3), sign-aware (a negative far distance must grow towards zero, not away
             // from it, or windows with tmin < 0 lose grazing boxes), so the computed interval
             // contains the exact one and comparisons with the exact tmin/tmax stay conservative.
-            constexpr T grow = T(1) + T(2) * gamma_bound<T>(3);
-            constexpr T shrink = T(1) - T(2) * gamma_bound<T>(3);
-            tn *= tn > T(0) ? shrink : grow;
-            tf *= tf > T(0) ? grow : shrink;
+            tn *= tn > T(0) ? slab_shrink<T> : slab_grow<T>;
+            tf *= tf > T(0) ? slab_grow<T> : slab_shrink<T>;
         }
         // Written as "t > t0 ? t : t0" so a NaN (origin on the plane, zero direction) leaves the
         // interval unchanged: such a ray lies in the face plane and thus inside the closed slab.
@@ -68,20 +73,17 @@ bool clip_slabs(const Vec3<T>& lo, const Vec3<T>& hi, const SlabRay<T>& r, T& t0
     return true;
 }
 
-/// The reciprocals of clip_slabs_ahead: inv_dir times the outward padding factors of
-/// clip_slabs<true>, shrink (1 - 2 gamma(3)) for near distances and grow (1 + 2 gamma(3)) for far
-/// ones, made once per ray.
+/// The reciprocals of clip_slabs_ahead: inv_dir times slab_shrink for near distances and
+/// slab_grow for far ones, made once per ray.
 template <class T>
 struct PaddedInv {
     Vec3<T> near;
     Vec3<T> far;
 
     explicit PaddedInv(const SlabRay<T>& r) {
-        constexpr T grow = T(1) + T(2) * gamma_bound<T>(3);
-        constexpr T shrink = T(1) - T(2) * gamma_bound<T>(3);
         for (std::size_t a = 0; a < 3; ++a) {
-            near[a] = r.inv_dir[a] * shrink;
-            far[a] = r.inv_dir[a] * grow;
+            near[a] = r.inv_dir[a] * slab_shrink<T>;
+            far[a] = r.inv_dir[a] * slab_grow<T>;
         }
     }
 };
