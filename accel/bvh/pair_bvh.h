@@ -3,7 +3,8 @@
 // tinybvh's BVH_SoA and Embree's BVH4 node keep them), converted from any built Bvh. Traversal
 // tests both boxes with one SSE slab test, descends into the nearer hit child and pushes the
 // farther only when it is hit, with its entry distance, so a closest-hit ray skips it on pop once
-// a nearer hit is found; any-hit stops at the first blocker. The robust mode widens distances
+// a nearer hit is found; any-hit takes child 0 first (no order: its next node is known before the
+// box test ends) and stops at the first blocker. The robust mode widens distances
 // exactly as clip_slabs<true> (intersect/box/slabs.h; Ize 2013), and NaN distances (origin on a
 // face plane, zero direction) leave the interval unchanged as there. Cost per ray: O(log N) nodes
 // for well-built trees; one box test per child, as Bvh.
@@ -151,7 +152,10 @@ private:
                 float tn[2];
                 const int mask = test<IsRobust>(n, sr, ray.tmin, ray.tmax, tn);
                 if (mask == 3) {
-                    const int near = tn[1] < tn[0] ? 1 : 0;
+                    // Any hit needs no order (as the wide traversal): child 0 first, so the
+                    // next node's address does not wait for the distances. On the SF 4 mesh's
+                    // shadow rays 3.6% more nodes per ray, yet 2.7% faster (docs/results.md).
+                    const int near = IsAnyHit ? 0 : tn[1] < tn[0] ? 1 : 0;
                     assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
                     stack[size++] = {n.child[1 - near], n.count[1 - near], tn[1 - near]};
                     cur = {n.child[near], n.count[near], tn[near]};
@@ -234,10 +238,8 @@ inline int PairBvh::test(
         t0 = _mm_max_ps(near_t, t0);
         t1 = _mm_min_ps(far_t, t1);
     }
-    alignas(16) float out[4];
-    _mm_store_ps(out, t0);
-    tn[0] = out[0];
-    tn[1] = out[1];
+    tn[0] = _mm_cvtss_f32(t0);
+    tn[1] = _mm_cvtss_f32(_mm_shuffle_ps(t0, t0, _MM_SHUFFLE(1, 1, 1, 1)));
     return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & 3;
 }
 #else
