@@ -616,6 +616,8 @@ def main():
                     help="with --suite issue12: also print the headline on stdout")
     ap.add_argument("--json", help="read this benchmark JSON instead of running rtlab_bench")
     ap.add_argument("--save-json", help="also keep the JSON of the run here")
+    ap.add_argument("--git", help="git revision the header names (default: this script's "
+                    "checkout; give it when the script runs from a copy of the tree without .git)")
     ap.add_argument("--out", default="docs/results.md",
                     help="Markdown file; the part between the report markers is replaced")
     ap.add_argument("--plots", default="docs/plots", help="folder for the PNG plots")
@@ -678,9 +680,13 @@ def main():
             [f"--benchmark_filter='{args.filter}'"] if args.filter else []) + interleave
         command = " ".join(shown) + " --benchmark_out_format=json"
         data["context"]["rtlab_report_command"] = command
+        if args.git:
+            data["context"]["git"] = args.git
         if args.save_json:
             with open(args.save_json, "w") as f:
                 json.dump(data, f, indent=1)
+    if args.git:
+        data.setdefault("context", {})["git"] = args.git
     prov = provenance(data.get("context", {}), command, root)
     prov["wall"] = wall
     if args.suite == "issue12":
