@@ -680,13 +680,11 @@ def main():
             [f"--benchmark_filter='{args.filter}'"] if args.filter else []) + interleave
         command = " ".join(shown) + " --benchmark_out_format=json"
         data["context"]["rtlab_report_command"] = command
-        if args.git:
-            data["context"]["git"] = args.git
-        if args.save_json:
-            with open(args.save_json, "w") as f:
-                json.dump(data, f, indent=1)
     if args.git:
         data.setdefault("context", {})["git"] = args.git
+    if args.save_json and not args.json:
+        with open(args.save_json, "w") as f:
+            json.dump(data, f, indent=1)
     prov = provenance(data.get("context", {}), command, root)
     prov["wall"] = wall
     if args.suite == "issue12":
