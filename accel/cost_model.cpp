@@ -90,8 +90,9 @@ FlatBvh flatten(const PairBvh& b) {
         const PairNode& n = b.nodes[pi];
         std::array<std::uint32_t, 2> kid{};
         for (int c = 0; c < 2; ++c) {
-            kid[c] = add_node(f, n.child_bounds(c), n.count[c] > 0 ? n.child[c] : 0, n.count[c]);
-            if (n.count[c] == 0) {
+            kid[c] =
+                add_node(f, n.child_bounds(c), n.count_of(c) > 0 ? n.child[c] : 0, n.count_of(c));
+            if (n.count_of(c) == 0) {
                 todo.emplace_back(n.child[c], kid[c]);
             }
         }

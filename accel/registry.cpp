@@ -221,6 +221,16 @@ const ParamSpec leaf_align = integer_param("leaf_align",
                                            "with leaves=soa, every leaf starts at a multiple of "
                                            "this many slots (padding between leaves); 1 packs");
 
+// Children larger box first: any-hit traversal visits them in slot order (accel/bvh/bvh.h
+// ChildOrder; session 25: bvh:pair 1.05-1.07x on the SF 4 mesh's shadow rays, 2% fewer nodes per
+// ray; bvh8 within noise; docs/results.md).
+const ParamSpec child_order = choice_param("order",
+                                           0,
+                                           {"area", "build"},
+                                           "area: a node's children by surface area, largest "
+                                           "first (any-hit visits them in that order); build: "
+                                           "as the source tree holds them");
+
 /// The `from` builder's tree with its leaves aligned as the spec asks (only for SoA leaves).
 Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
     const bool soa = s.value("leaves") == 0;
@@ -232,7 +242,8 @@ Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
 template <auto Convert>
 AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     return with_threads(threads_of(s), [&]() -> AnyAccel {
-        auto layout = Convert(aligned_source(in, s));
+        auto layout = Convert(aligned_source(in, s),
+                              s.value("order") == 0 ? ChildOrder::area : ChildOrder::build);
         layout.soa_leaves = s.value("leaves") == 0;
         return layout;
     });
@@ -284,7 +295,8 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
-     {from, leaves, leaf_align, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits,
+      threads},
      &layout_row<&PairBvh::convert>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
@@ -296,16 +308,19 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+      threads},
      &layout_row<&collapse_bvh<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+      threads},
      &layout_row<&collapse_bvh<8>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, qwide_max_leaf, bins, wide_ct, bvh_ci, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+      threads},
      &layout_row<&quantize_bvh8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",

@@ -557,4 +557,44 @@ TEST_CASE("pair layout skips a pushed child once a nearer hit closes the window"
     CHECK(st.nodes == 3);  // the root box, then both children at once
 }
 
+TEST_CASE("pair layout puts the larger child first and descends on the ray's side of the split",
+          "[accel][bvh]") {
+    // A unit box at x in [0, 1] and a larger one at x in [3, 5]: split on x, the larger (the
+    // source's upper child) becomes child 0.
+    const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{3, 0, 0}, {5, 1, 1}}};
+    const Bvh source = build_with(boxes, "bvh:binned", 1);
+    const PairBvh pair = PairBvh::convert(source);
+    REQUIRE(pair.nodes.size() == 1);
+    const PairNode& n = pair.nodes[0];
+    CHECK(n.axis() == 0);
+    CHECK(n.flipped() == 1);
+    CHECK(n.child_bounds(0) == boxes[1]);
+    CHECK(n.count_of(0) == 1);
+    CHECK(n.count_of(1) == 1);
+    const PairBvh kept = PairBvh::convert(source, ChildOrder::build);
+    CHECK(kept.nodes[0].flipped() == 0);
+    CHECK(kept.nodes[0].child_bounds(0) == boxes[0]);
+    const auto order_tested = [&](Rayf ray, bool any) {
+        std::vector<std::uint32_t> tested;
+        if (any) {
+            pair.occluded(ray, [&](std::uint32_t id, const Rayf&) {
+                tested.push_back(id);
+                return false;  // no blocker: every hit box's primitive is offered
+            });
+        } else {
+            pair.intersect(ray, [&](std::uint32_t id, Rayf&) {
+                tested.push_back(id);
+                return false;
+            });
+        }
+        return tested;
+    };
+    using Ids = std::vector<std::uint32_t>;
+    // Closest hit: the ray's side of the split first, whichever child holds it.
+    CHECK(order_tested({{-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 100}, false) == Ids{0, 1});
+    CHECK(order_tested({{6, 0.5f, 0.5f}, {-1, 0, 0}, 0, 100}, false) == Ids{1, 0});
+    // Any hit: child 0, the larger box, first.
+    CHECK(order_tested({{-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 100}, true) == Ids{1, 0});
+}
+
 }  // namespace rtlab

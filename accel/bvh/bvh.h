@@ -123,6 +123,12 @@ private:
 
 static_assert(Accel<Bvh>);
 
+/// How a layout converted from a Bvh (bvh:pair, bvh4, bvh8, bvh8q) orders a node's children:
+/// `area` puts the larger surface areas first, which any-hit traversal, visiting children in slot
+/// order, reaches first (they hold the most geometry; bvh:pair shadow rays 1.05-1.07x faster on
+/// the SF 4 mesh, docs/results.md); `build` keeps the source tree's order.
+enum class ChildOrder { area, build };
+
 /// The same tree with every leaf's first prim_ids slot a multiple of `k` (k <= 1: unchanged):
 /// leaves keep their order and the slots between them hold padding_slot. With k the SIMD group of
 /// slot-ordered leaf data (4), a leaf's data starts a group and a leaf of up to 8 primitives is

@@ -8,7 +8,7 @@
 
 namespace rtlab {
 
-PairBvh PairBvh::convert(const Bvh& b) {
+PairBvh PairBvh::convert(const Bvh& b, ChildOrder order) {
     PairBvh p;
     p.prim_ids = b.prim_ids;
     p.prim_count = b.prim_count;
@@ -26,7 +26,7 @@ PairBvh PairBvh::convert(const Bvh& b) {
         return p;
     }
     // Depth-first: a node's pair node is allocated when its parent is filled, so siblings'
-    // nodes are adjacent and a left subtree's nodes precede its right sibling's subtree.
+    // nodes are adjacent and child 0's subtree precedes child 1's.
     struct Item {
         std::uint32_t source;  // inner node of b
         std::uint32_t target;  // its pair node
@@ -37,11 +37,17 @@ PairBvh PairBvh::convert(const Bvh& b) {
     while (!stack.empty()) {
         const Item it = stack.back();
         stack.pop_back();
+        const BvhNode& src = b.nodes[it.source];
+        // Child 0 the source's second child when that one's box is larger (ChildOrder::area).
+        const bool flip =
+            order == ChildOrder::area && b.nodes[src.first + 1].bounds().surface_area() >
+                                             b.nodes[src.first].bounds().surface_area();
         PairNode n{};
         Item inner[2];
         int inner_count = 0;
         for (std::uint32_t c = 0; c < 2; ++c) {
-            const BvhNode& child = b.nodes[b.nodes[it.source].first + c];
+            const std::uint32_t from = src.first + (flip ? 1 - c : c);
+            const BvhNode& child = b.nodes[from];
             n.x[c] = child.lo.x;
             n.x[2 + c] = child.hi.x;
             n.y[c] = child.lo.y;
@@ -55,9 +61,11 @@ PairBvh PairBvh::convert(const Bvh& b) {
                 n.child[c] = static_cast<std::uint32_t>(p.nodes.size());
                 n.count[c] = 0;
                 p.nodes.emplace_back();
-                inner[inner_count++] = {b.nodes[it.source].first + c, n.child[c]};
+                inner[inner_count++] = {from, n.child[c]};
             }
         }
+        n.count[0] |= src.axis() << 30;
+        n.count[1] |= (flip ? 1u : 0u) << 30;
         p.nodes[it.target] = n;
         for (int k = inner_count - 1; k >= 0; --k) {
             stack.push_back(inner[k]);
@@ -90,7 +98,7 @@ AccelInfo PairBvh::info() const {
         stack.pop_back();
         for (int c = 0; c < 2; ++c) {
             const PairNode& n = nodes[it.node];
-            if (n.count[c] > 0) {
+            if (n.count_of(c) > 0) {
                 ++i.leaves;
                 i.max_depth = std::max(i.max_depth, it.depth + 1);
             } else {
@@ -145,8 +153,8 @@ std::string PairBvh::validate() const {
                     !it.box.contains(box)) {
                     return where + "child box empty, NaN or outside its parent";
                 }
-                if (n.count[c] > 0) {
-                    if (std::string e = use_leaf(n.child[c], n.count[c]); !e.empty()) {
+                if (n.count_of(c) > 0) {
+                    if (std::string e = use_leaf(n.child[c], n.count_of(c)); !e.empty()) {
                         return where + e;
                     }
                 } else {

@@ -1,10 +1,12 @@
 #pragma once
 // Binary BVH with both children's boxes stored in their parent (a 64-byte node, SoA per axis as
-// tinybvh's BVH_SoA and Embree's BVH4 node keep them), converted from any built Bvh. Traversal
-// tests both boxes with one SSE slab test, descends into the nearer hit child and pushes the
-// farther only when it is hit, with its entry distance, so a closest-hit ray skips it on pop once
-// a nearer hit is found; any-hit takes child 0 first (no order: its next node is known before the
-// box test ends) and stops at the first blocker. The robust mode widens distances
+// tinybvh's BVH_SoA and Embree's BVH4 node keep them), converted from any built Bvh, the child of
+// larger surface area first (ChildOrder::area). Traversal tests both boxes with one SSE slab
+// test, descends into the hit child on the ray's side of the split (the ray's direction sign on
+// the split axis, as pbrt's dirIsNeg: no wait for the distances) and pushes the other only when
+// it is hit, with its entry distance, so a closest-hit ray skips it on pop once a nearer hit is
+// found; any-hit takes child 0 first (the larger box: its next node is known before the box test
+// ends) and stops at the first blocker. The robust mode widens distances
 // exactly as clip_slabs<true> (intersect/box/slabs.h; Ize 2013), and NaN distances (origin on a
 // face plane, zero direction) leave the interval unchanged as there. Cost per ray: O(log N) nodes
 // for well-built trees; one box test per child, as Bvh.
@@ -28,13 +30,22 @@ namespace rtlab {
 
 /// An inner node with its two children's boxes: x = (lo0, lo1, hi0, hi1) of child 0 and 1, the
 /// same for y and z; a child is an inner node (count 0, child = node index) or a leaf (count > 0,
-/// child = first slot in prim_ids).
+/// child = first slot in prim_ids). The source node's split axis rides in count[0]'s top two bits,
+/// and count[1]'s bit 30 is set when child 0 is the split's upper side.
 struct alignas(64) PairNode {
+    static constexpr std::uint32_t count_mask = (1u << 30) - 1;
     float x[4];
     float y[4];
     float z[4];
     std::uint32_t child[2];
     std::uint32_t count[2];
+
+    /// Child c's primitive count (0: an inner node).
+    std::uint32_t count_of(int c) const { return count[c] & count_mask; }
+    /// The axis the source tree split this node on.
+    std::uint32_t axis() const { return count[0] >> 30; }
+    /// 1 when child 0 is the upper side of the split (the source's second child), else 0.
+    std::uint32_t flipped() const { return count[1] >> 30; }
 
     /// Child c's box.
     Bounds3f child_bounds(int c) const {
@@ -60,11 +71,11 @@ struct PairBvh {
     /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
     bool soa_leaves = true;
 
-    /// The same tree as b, in pair nodes.
-    static PairBvh convert(const Bvh& b);
+    /// The same tree as b, in pair nodes with their children in `order`.
+    static PairBvh convert(const Bvh& b, ChildOrder order = ChildOrder::area);
 
     /// Closest hit: offers hit_fn every primitive in a leaf whose box the shrinking window meets,
-    /// nearer child first. Invalid rays return false before any node.
+    /// the child on the ray's side of the split first. Invalid rays return false before any node.
     template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
     bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
         return traverse<false, IsRobust, false>(ray, hit_fn, stats);
@@ -133,6 +144,8 @@ private:
             return false;
         }
         const bool prefetch = nodes.size() * sizeof(PairNode) >= prefetch_min_bytes;
+        // Bit a set when the ray runs towards -a: the split's upper child is then the nearer.
+        const unsigned neg = (sr.neg[0] ? 1u : 0u) | (sr.neg[1] ? 2u : 0u) | (sr.neg[2] ? 4u : 0u);
         Entry stack[64];
         std::uint32_t size = 0;
         Entry cur{root_child, root_count, t0};
@@ -144,26 +157,29 @@ private:
                 stats.count_node();
                 // Fetch the inner children while their boxes are tested: the next node's load
                 // is the traversal's longest wait on large scenes.
+                const std::uint32_t count[2] = {n.count_of(0), n.count_of(1)};
                 for (int c = 0; c < 2; ++c) {
-                    if (prefetch && n.count[c] == 0) {
+                    if (prefetch && count[c] == 0) {
                         prefetch_line(&nodes[n.child[c]]);
                     }
                 }
                 float tn[2];
                 const int mask = test<IsRobust>(n, sr, ray.tmin, ray.tmax, tn);
                 if (mask == 3) {
-                    // Any hit needs no order (as the wide traversal): child 0 first, so the
-                    // next node's address does not wait for the distances. On the SF 4 mesh's
-                    // shadow rays 3.6% more nodes per ray, yet 2.7% faster (docs/results.md).
-                    const int near = IsAnyHit ? 0 : tn[1] < tn[0] ? 1 : 0;
+                    // Any hit: child 0 (the larger box) first, as the wide traversal. Closest
+                    // hit: the ray's side of the split, as many nodes per ray as distance order
+                    // on the SF 4 mesh and faster (docs/results.md, session 25); taking the
+                    // side for any hit too cost 3% against child 0.
+                    const int near =
+                        IsAnyHit ? 0 : static_cast<int>(((neg >> n.axis()) ^ n.flipped()) & 1u);
                     assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");
-                    stack[size++] = {n.child[1 - near], n.count[1 - near], tn[1 - near]};
-                    cur = {n.child[near], n.count[near], tn[near]};
+                    stack[size++] = {n.child[1 - near], count[1 - near], tn[1 - near]};
+                    cur = {n.child[near], count[near], tn[near]};
                     continue;
                 }
                 if (mask != 0) {
                     const int c = mask >> 1;
-                    cur = {n.child[c], n.count[c], tn[c]};
+                    cur = {n.child[c], count[c], tn[c]};
                     continue;
                 }
             } else if constexpr (ByRange) {

@@ -133,11 +133,11 @@ private:
 
 /// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp).
 template <unsigned N>
-WideBvh<N> collapse_bvh(const Bvh& binary);
+WideBvh<N> collapse_bvh(const Bvh& binary, ChildOrder order = ChildOrder::area);
 
 /// The BVH8 of collapse_bvh<8>(binary) with its nodes quantised (qnodes; accel/bvh/
 /// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
-WideBvh<8> quantize_bvh8(const Bvh& binary);
+WideBvh<8> quantize_bvh8(const Bvh& binary, ChildOrder order = ChildOrder::area);
 
 extern template struct WideBvh<4>;
 extern template struct WideBvh<8>;

@@ -2,13 +2,16 @@
 // children and repeatedly opens the inner child of largest surface area (the one a random ray
 // reaches most often, so opening it saves the most node visits under the SAH) until it holds N
 // children or only leaves (greedy SAH collapse as in Wald, Benthin & Boulos 2008 and Embree's
-// BVH4/8 builders). Leaves and their prim_ids slots are kept as the binary build made them. The
-// subtrees below the top levels are collapsed in parallel (TBB), the same nodes for any threads.
+// BVH4/8 builders). With ChildOrder::area the children are then sorted by surface area, largest
+// first (the order any-hit traversal visits them in). Leaves and their prim_ids slots are kept as
+// the binary build made them. The subtrees below the top levels are collapsed in parallel (TBB),
+// the same nodes for any threads.
 
 #include "accel/bvh/wide_bvh.h"
 
 #include <array>
 #include <tbb/parallel_for.h>
+#include <utility>
 #include <vector>
 
 namespace rtlab {
@@ -34,9 +37,10 @@ struct Kids {
 
 /// The kids of the wide node for binary node `b`: its two children, then the inner kid of
 /// largest surface area opened (replaced by its first child, its second appended) until there
-/// are N or only leaves (ties keep the first).
+/// are N or only leaves (ties keep the first); with ChildOrder::area then sorted by surface area,
+/// largest first (stable).
 template <unsigned N>
-Kids<N> wide_children(const Bvh& bvh, std::uint32_t b) {
+Kids<N> wide_children(const Bvh& bvh, std::uint32_t b, ChildOrder order) {
     Kids<N> kids;
     const BvhNode& node = bvh.nodes[b];
     if (node.is_leaf()) {
@@ -61,6 +65,19 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b) {
         kids.set(bvh, best, opened);
         kids.add(bvh, opened + 1);
     }
+    if (order == ChildOrder::area) {
+        std::array<float, N> key{};
+        for (unsigned i = 0; i < kids.size; ++i) {
+            key[i] = bvh.nodes[kids.node[i]].bounds().surface_area();
+        }
+        for (unsigned i = 1; i < kids.size; ++i) {  // insertion sort: at most N kids
+            for (unsigned j = i; j > 0 && key[j] > key[j - 1]; --j) {
+                std::swap(key[j], key[j - 1]);
+                std::swap(kids.node[j], kids.node[j - 1]);
+                std::swap(kids.area[j], kids.area[j - 1]);
+            }
+        }
+    }
     return kids;
 }
 
@@ -76,7 +93,8 @@ void fill(const Bvh& bvh,
           std::vector<Item> todo,
           LargeVector<WideNode<N>>& nodes,
           std::uint32_t stop,
-          std::vector<Item>* pending) {
+          std::vector<Item>* pending,
+          ChildOrder order) {
     while (!todo.empty()) {
         const Item it = todo.back();
         todo.pop_back();
@@ -84,7 +102,7 @@ void fill(const Bvh& bvh,
             pending->push_back(it);
             continue;
         }
-        const Kids<N> kids = wide_children<N>(bvh, it.b);
+        const Kids<N> kids = wide_children<N>(bvh, it.b, order);
         for (unsigned i = 0; i < kids.size; ++i) {
             const BvhNode& k = bvh.nodes[kids.node[i]];
             if (k.is_leaf()) {
@@ -102,7 +120,7 @@ void fill(const Bvh& bvh,
 }  // namespace
 
 template <unsigned N>
-WideBvh<N> collapse_bvh(const Bvh& bvh) {
+WideBvh<N> collapse_bvh(const Bvh& bvh, ChildOrder order) {
     WideBvh<N> w;
     w.prim_ids = bvh.prim_ids;
     w.prim_count = bvh.prim_count;
@@ -117,11 +135,11 @@ WideBvh<N> collapse_bvh(const Bvh& bvh) {
     constexpr std::uint32_t task_depth = N == 8 ? 2 : 3;
     w.nodes.push_back(WideNode<N>::empty());
     std::vector<Item> pending;
-    fill<N>(bvh, {{0, 0, 0}}, w.nodes, task_depth, &pending);
+    fill<N>(bvh, {{0, 0, 0}}, w.nodes, task_depth, &pending, order);
     std::vector<LargeVector<WideNode<N>>> chunks(pending.size());
     tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
         chunks[k].push_back(WideNode<N>::empty());
-        fill<N>(bvh, {{pending[k].b, 0, 0}}, chunks[k], 0, nullptr);
+        fill<N>(bvh, {{pending[k].b, 0, 0}}, chunks[k], 0, nullptr, order);
     });
     // Chunk k's node 0 fills its placeholder pending[k].wi, its node j >= 1 lands at
     // base[k] + j - 1 (inner child links renumbered the same way).
@@ -147,7 +165,7 @@ WideBvh<N> collapse_bvh(const Bvh& bvh) {
     return w;
 }
 
-template WideBvh<4> collapse_bvh<4>(const Bvh&);
-template WideBvh<8> collapse_bvh<8>(const Bvh&);
+template WideBvh<4> collapse_bvh<4>(const Bvh&, ChildOrder);
+template WideBvh<8> collapse_bvh<8>(const Bvh&, ChildOrder);
 
 }  // namespace rtlab
