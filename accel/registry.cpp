@@ -294,7 +294,8 @@ const AccelEntry registry_rows[] = {
      {max_leaf, bins, bvh_ct, bvh_ci, threads},
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
-     "binary BVH, both child boxes in the parent (64-byte node), one SSE test, nearer first",
+     "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
+     "of the split first",
      {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits,
       threads},
      &layout_row<&PairBvh::convert>},
