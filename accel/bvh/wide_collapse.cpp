@@ -66,13 +66,11 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b, ChildOrder order) {
         kids.add(bvh, opened + 1);
     }
     if (order == ChildOrder::area) {
-        std::array<float, N> key{};
-        for (unsigned i = 0; i < kids.size; ++i) {
-            key[i] = bvh.nodes[kids.node[i]].bounds().surface_area();
-        }
+        const auto box_area = [&](unsigned i) {
+            return bvh.nodes[kids.node[i]].bounds().surface_area();
+        };
         for (unsigned i = 1; i < kids.size; ++i) {  // insertion sort: at most N kids
-            for (unsigned j = i; j > 0 && key[j] > key[j - 1]; --j) {
-                std::swap(key[j], key[j - 1]);
+            for (unsigned j = i; j > 0 && box_area(j) > box_area(j - 1); --j) {
                 std::swap(kids.node[j], kids.node[j - 1]);
                 std::swap(kids.area[j], kids.area[j - 1]);
             }
