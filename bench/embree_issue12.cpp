@@ -74,16 +74,24 @@ void bm_build(benchmark::State& state, EmbreeQuality q, std::string scene, int t
     state.counters["bytes/prim"] = bytes / prims;
 }
 
+/// Wall seconds one call of f takes.
+template <class F>
+double seconds_once(const F& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 /// Wall seconds of `passes` calls of f, after one untimed call (the other side's sample has just
 /// filled the caches with its own data).
 template <class F>
 double seconds_of(int passes, const F& f) {
     f();
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int p = 0; p < passes; ++p) {
-        f();
-    }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return seconds_once([&] {
+        for (int p = 0; p < passes; ++p) {
+            f();
+        }
+    });
 }
 
 /// The value at fraction q of sorted v (nearest rank).
@@ -136,14 +144,6 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     }
     set_ratio_counters(state, std::move(ratios));
     state.counters["passes"] = passes;
-}
-
-/// Seconds f takes.
-template <class F>
-double seconds_once(const F& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void bm_paired_build(benchmark::State& state, std::string spec, std::string scene) {

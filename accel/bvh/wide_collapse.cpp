@@ -23,14 +23,13 @@ namespace {
 template <unsigned N>
 struct Kids {
     std::array<std::uint32_t, N> node{};
-    std::array<float, N> area{};  ///< surface area of an inner kid; -1 for a leaf
+    std::array<float, N> area{};  ///< surface area of the kid's box
     unsigned size = 0;
 
     /// Kid i becomes binary node b.
     void set(const Bvh& bvh, unsigned i, std::uint32_t b) {
-        const BvhNode& k = bvh.nodes[b];
         node[i] = b;
-        area[i] = k.is_leaf() ? -1.0f : k.bounds().surface_area();
+        area[i] = bvh.nodes[b].bounds().surface_area();
     }
     void add(const Bvh& bvh, std::uint32_t b) { set(bvh, size++, b); }
 };
@@ -53,7 +52,7 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b, ChildOrder order) {
         unsigned best = kids.size;
         float best_area = -1.0f;
         for (unsigned i = 0; i < kids.size; ++i) {
-            if (kids.area[i] > best_area) {
+            if (!bvh.nodes[kids.node[i]].is_leaf() && kids.area[i] > best_area) {
                 best = i;
                 best_area = kids.area[i];
             }
@@ -66,11 +65,8 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b, ChildOrder order) {
         kids.add(bvh, opened + 1);
     }
     if (order == ChildOrder::area) {
-        const auto box_area = [&](unsigned i) {
-            return bvh.nodes[kids.node[i]].bounds().surface_area();
-        };
         for (unsigned i = 1; i < kids.size; ++i) {  // insertion sort: at most N kids
-            for (unsigned j = i; j > 0 && box_area(j) > box_area(j - 1); --j) {
+            for (unsigned j = i; j > 0 && kids.area[j] > kids.area[j - 1]; --j) {
                 std::swap(kids.node[j], kids.node[j - 1]);
                 std::swap(kids.area[j], kids.area[j - 1]);
             }
