@@ -107,11 +107,13 @@ inline void add(std::span<Vec3f> accum, std::uint32_t slot, const Vec3f& v) {
     accum[slot] += v;
 }
 
-/// Resolves a shadow batch: unblocked rays add their contribution. With Refraction, rays whose
-/// any-hit blocker transmits are walked surface by surface (closest hits), multiplying by each
-/// crossed material's k_t (no refraction, Fresnel or absorption on shadow rays: seed 004's "how
-/// much light opaque and transparent surfaces block", kept simple) until the light or an opaque
-/// surface is reached.
+/// Resolves a shadow batch: unblocked rays add their contribution. With Refraction, every blocked
+/// ray is walked surface by surface (closest hits), multiplying by each crossed material's k_t (no
+/// refraction, Fresnel or absorption on shadow rays: seed 004's "how much light opaque and
+/// transparent surfaces block", kept simple) until the light or an opaque surface is reached. The
+/// any-hit blocker's own material does not decide: which blocker an any-hit query meets first
+/// depends on the structure, and a walk's offset origin can step past an opaque surface touching a
+/// glass one (a flake's spheres touch), so deciding by it made images differ between structures.
 template <bool Refraction>
 void resolve_shadows(const TraceContext& c,
                      std::vector<ShadowPath>& shadows,
@@ -129,9 +131,7 @@ void resolve_shadows(const TraceContext& c,
         if (blocker[i] == invalid_id) {
             add(accum, shadows[i].slot, shadows[i].contribution);
         } else if constexpr (Refraction) {
-            if (material_of(c, blocker[i]).transmit > 0) {
-                walk.push_back(shadows[i]);
-            }
+            walk.push_back(shadows[i]);
         }
     }
     if constexpr (Refraction) {

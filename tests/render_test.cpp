@@ -85,8 +85,10 @@ TEST_CASE("every structure renders the same image of mirrors and glass", "[rende
         CAPTURE(e.name);
         const RenderResult img = render_with(s, std::string(e.name), r);
         CHECK(max_abs_diff(img.image, ref.image) < 1e-4f);
-        // Shadow rays differ: any-hit may meet a glass or an opaque blocker first.
+        // Shadow rays too: every blocked one is walked by closest hits, whatever blocker an
+        // any-hit query met first.
         CHECK(img.stats.eye == ref.stats.eye);
+        CHECK(img.stats.shadow == ref.stats.shadow);
         CHECK(img.stats.reflected == ref.stats.reflected);
         CHECK(img.stats.refracted == ref.stats.refracted);
     }
