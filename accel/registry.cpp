@@ -249,22 +249,25 @@ AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     });
 }
 
-// The wide layouts' source trees default to larger leaves: their SIMD leaf kernel tests up to 8
-// triangles for about the price of one, and sweeps/bvh8-leaves.json measured max_leaf 8 with
-// ct 4 1.2-1.3x faster than 4 and 1 on the tessellated flake (analytic spheres: unchanged), with
-// leaf and node memory less than half (docs/results.md, issue 12).
 ParamSpec with_default(ParamSpec p, double value) {
     p.default_value = value;
     return p;
 }
-const ParamSpec wide_max_leaf = with_default(max_leaf, 8);
-const ParamSpec wide_ct = with_default(bvh_ct, 4);
-// A quantised node stores leaf counts in 16 bits.
 ParamSpec with_max(ParamSpec p, double value) {
     p.max = value;
     return p;
 }
-const ParamSpec qwide_max_leaf = with_max(wide_max_leaf, 65535);
+// The SAH builders (bvh:binned, bvh:pbinned, bvh:sweep) and the wide layouts' source trees
+// default to leaves of up to 8 with ct 4, not the Config's 4 and 1: a node visit costs about four
+// triangle tests here. The wide layouts' SIMD leaf kernel tests up to 8 triangles for about the
+// price of one, and sweeps/bvh8-leaves.json measured them 1.2-1.3x faster on the tessellated
+// flake (analytic spheres: unchanged), with leaf and node memory less than half; the binary
+// SAH rows traced SF 4 a median 1.08x (tessellated) and 1.14x (analytic) as fast as with 4 and 1,
+// and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
+const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
+const ParamSpec sah_ct = with_default(bvh_ct, 4);
+// A quantised node stores leaf counts in 16 bits.
+const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
 // on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10); 32 bins,
 // leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that over 262,144 rays on the
@@ -286,12 +289,12 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_median, bvh_config>},
     {"bvh:binned",
      "binary BVH, binned SAH (Wald 2007)",
-     {max_leaf, bins, bvh_ct, bvh_ci, threads},
+     {sah_max_leaf, bins, sah_ct, bvh_ci, threads},
      &threaded_row<build_bvh_binned_sah, bvh_config>},
     {"bvh:pbinned",
      "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n primitives), "
      "parallel with TBB, deterministic",
-     {max_leaf, bins, bvh_ct, bvh_ci, threads},
+     {sah_max_leaf, bins, sah_ct, bvh_ci, threads},
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
@@ -301,7 +304,7 @@ const AccelEntry registry_rows[] = {
      &layout_row<&PairBvh::convert>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
-     {max_leaf, bvh_ct, bvh_ci, threads},
+     {sah_max_leaf, sah_ct, bvh_ci, threads},
      &threaded_row<build_bvh_sweep_sah, bvh_config>},
     {"bvh:lbvh",
      "binary BVH, Morton-code radix tree (Karras 2012)",
@@ -309,18 +312,18 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
       threads},
      &layout_row<&collapse_bvh<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, wide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
       threads},
      &layout_row<&collapse_bvh<8>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, wide_ct, bvh_ci, morton_bits,
+     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
       threads},
      &layout_row<&quantize_bvh8>},
     {"kdtree:sah",
