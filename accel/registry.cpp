@@ -53,6 +53,12 @@ const ParamSpec bvh_ci = real_param("ci",
                                     1e-3,
                                     cost_max,
                                     "SAH cost of one primitive test");
+const ParamSpec sah_block = integer_param(
+    "block",
+    bvh_default.sah_block,
+    1,
+    64,
+    "the SAH counts a range's primitives in started blocks of this many (Embree's sahBlockSize)");
 const ParamSpec morton_bits =
     integer_param("morton_bits", bvh_default.morton_bits, 1, 10, "Morton code bits per axis");
 const ParamSpec threads =
@@ -138,6 +144,7 @@ Bvh::Config bvh_config(const AccelSpec& s) {
     c.traversal_cost = static_cast<float>(s.value_or("ct", c.traversal_cost));
     c.intersection_cost = static_cast<float>(s.value_or("ci", c.intersection_cost));
     c.morton_bits = as_u32(s.value_or("morton_bits", c.morton_bits));
+    c.sah_block = as_u32(s.value_or("block", c.sah_block));
     return c;
 }
 
@@ -266,6 +273,11 @@ ParamSpec with_max(ParamSpec p, double value) {
 // and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
 const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
 const ParamSpec sah_ct = with_default(bvh_ct, 4);
+// The wide layouts' source trees count primitives in blocks of 4, their SoA leaves' group (one
+// 4-lane test, half of an 8-lane one): bvh8 traced the SF 4 mesh 1.04x as fast as with 1, paired
+// with Embree (watertight + robust 0.99-1.01x; analytic SF 4 1.00-1.02x; docs/results.md, issue
+// 12, session 28).
+const ParamSpec wide_block = with_default(sah_block, 4);
 // A quantised node stores leaf counts in 16 bits.
 const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
@@ -289,22 +301,22 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_median, bvh_config>},
     {"bvh:binned",
      "binary BVH, binned SAH (Wald 2007)",
-     {sah_max_leaf, bins, sah_ct, bvh_ci, threads},
+     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
      &threaded_row<build_bvh_binned_sah, bvh_config>},
     {"bvh:pbinned",
      "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n primitives), "
      "parallel with TBB, deterministic",
-     {sah_max_leaf, bins, sah_ct, bvh_ci, threads},
+     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
      &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
      "of the split first",
-     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, morton_bits,
-      threads},
+     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, sah_block,
+      morton_bits, threads},
      &layout_row<&PairBvh::convert>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
-     {sah_max_leaf, sah_ct, bvh_ci, threads},
+     {sah_max_leaf, sah_ct, bvh_ci, sah_block, threads},
      &threaded_row<build_bvh_sweep_sah, bvh_config>},
     {"bvh:lbvh",
      "binary BVH, Morton-code radix tree (Karras 2012)",
@@ -312,19 +324,19 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
-      threads},
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+      morton_bits, threads},
      &layout_row<&collapse_bvh<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
-      threads},
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+      morton_bits, threads},
      &layout_row<&collapse_bvh<8>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, morton_bits,
-      threads},
+     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+      morton_bits, threads},
      &layout_row<&quantize_bvh8>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",

@@ -14,9 +14,9 @@ namespace {
 
 TEST_CASE("a spec names every parameter in canonical order, defaults included", "[accel][spec]") {
     CHECK(parse_accel_spec("bvh:binned").canonical() ==
-          "bvh:binned,max_leaf=8,bins=16,ct=4,ci=1,threads=0");
+          "bvh:binned,max_leaf=8,bins=16,ct=4,ci=1,block=1,threads=0");
     CHECK(parse_accel_spec("bvh:binned,bins=32,max_leaf=4").canonical() ==
-          "bvh:binned,max_leaf=4,bins=32,ct=4,ci=1,threads=0");
+          "bvh:binned,max_leaf=4,bins=32,ct=4,ci=1,block=1,threads=0");
     CHECK(parse_accel_spec("kdtree:sah,ct=1,ci=80,empty_bonus=0.5").canonical() ==
           "kdtree:sah,ct=1,ci=80,empty_bonus=0.5,max_depth=0,min_leaf=1,perfect=1,threads=0,"
           "traversal=havran,leaves=soa");
@@ -25,7 +25,7 @@ TEST_CASE("a spec names every parameter in canonical order, defaults included", 
     CHECK(parse_accel_spec("brute").canonical() == "brute");
     // Reals are stored as floats and printed as the shortest text that reads back the same.
     CHECK(parse_accel_spec("bvh:sweep,ct=0.1").canonical() ==
-          "bvh:sweep,max_leaf=8,ct=0.1,ci=1,threads=0");
+          "bvh:sweep,max_leaf=8,ct=0.1,ci=1,block=1,threads=0");
 }
 
 TEST_CASE("every row's canonical spec parses back to itself", "[accel][spec]") {

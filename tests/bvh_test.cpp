@@ -1,6 +1,7 @@
 // BVH node layout, tree invariants and builder-specific edge cases.
 
 #include "accel/any_accel.h"
+#include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -129,12 +130,16 @@ TEST_CASE("SAH builders beat the median and LBVH trees on the SAH metric", "[acc
 
 TEST_CASE("SAH builders leave no range a leaf beats whatever its split", "[accel][bvh]") {
     // A range of n <= max_leaf with Ci * n <= Ct costs at most Ct * A as a leaf, which no split's
-    // Ct * A + Ci * (A_L n_L + A_R n_R) undercuts: no inner node holds that few primitives.
+    // Ct * A + Ci * (A_L n_L + A_R n_R) undercuts: no inner node holds that few primitives. With
+    // blocks of k, n counts ceil(n / k) on both sides.
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 2000);
     const std::string row = GENERATE("bvh:pbinned", "bvh:binned", "bvh:sweep");
-    const auto [costs, most] = GENERATE(std::pair<std::string, std::uint32_t>{",ct=4", 4},
-                                        std::pair<std::string, std::uint32_t>{",ct=3", 3},
-                                        std::pair<std::string, std::uint32_t>{",ct=2,ci=0.5", 4});
+    const auto [costs, most] =
+        GENERATE(std::pair<std::string, std::uint32_t>{",ct=4,block=1", 4},
+                 std::pair<std::string, std::uint32_t>{",ct=3,block=1", 3},
+                 std::pair<std::string, std::uint32_t>{",ct=2,ci=0.5,block=1", 4},
+                 std::pair<std::string, std::uint32_t>{",ct=2,block=4", 8},
+                 std::pair<std::string, std::uint32_t>{",ct=1,block=3", 3});
     CAPTURE(row, costs);
     const Bvh bvh = build_with(soup.boxes, row, 8, costs);
     check_layout(bvh, soup.boxes);
@@ -508,13 +513,13 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     const auto count = GENERATE(0u, 1u, 2u, 5u, 1000u);
     CAPTURE(from, count);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);
-    const bool sah = from == "pbinned" || from == "binned" || from == "sweep";
-    const Bvh source = build_with(soup.boxes, "bvh:" + from, 4, sah ? ",ct=1" : "");
-    // The source's parameters (max_leaf 4, Ct 1, 16 bins), not the pair row's
-    // defaults; leaves packed as the source's (the default aligns them: align_leaf_slots, tested
-    // below).
+    // The source's settings (max_leaf 4, Ct 1, 16 bins), not the pair row's defaults; leaves
+    // packed as the source's (the default aligns them: align_leaf_slots, tested below).
+    const std::string_view settings = "max_leaf=4,ct=1,bins=16,block=1";
+    const Bvh source =
+        std::get<Bvh>(build_accel(test::spec_with("bvh:" + from, settings), soup.input()));
     const AnyAccel any = build_accel(
-        "bvh:pair,from=" + from + ",max_leaf=4,ct=1,bins=16,leaf_align=1", soup.input());
+        test::spec_with("bvh:pair", settings) + ",from=" + from + ",leaf_align=1", soup.input());
     const PairBvh& pair = std::get<PairBvh>(any);
     REQUIRE(pair.validate().empty());
     CHECK(pair == PairBvh::convert(source));

@@ -34,9 +34,9 @@ const char* three_scenes = R"({
 TEST_CASE("sweep parameter lists multiply out into canonical specs", "[sweep]") {
     const sweep::SweepFile s = load_text(three_scenes);
     REQUIRE(s.specs.size() == 3 * 2 + 1);
-    CHECK(s.specs[0] == "bvh:binned,max_leaf=1,bins=4,ct=4,ci=1,threads=0");
-    CHECK(s.specs[1] == "bvh:binned,max_leaf=1,bins=32,ct=4,ci=1,threads=0");
-    CHECK(s.specs[5] == "bvh:binned,max_leaf=8,bins=32,ct=4,ci=1,threads=0");
+    CHECK(s.specs[0] == "bvh:binned,max_leaf=1,bins=4,ct=4,ci=1,block=1,threads=0");
+    CHECK(s.specs[1] == "bvh:binned,max_leaf=1,bins=32,ct=4,ci=1,block=1,threads=0");
+    CHECK(s.specs[5] == "bvh:binned,max_leaf=8,bins=32,ct=4,ci=1,block=1,threads=0");
     CHECK(s.specs[6] == parse_accel_spec("kdtree:sah").canonical());
 }
 

@@ -219,17 +219,16 @@ TEST_CASE("the 8-lane child order network sorts like lane_order_key", "[accel][w
 
 TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees", "[accel][wide]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 7, 2000);
+    // The binary tree's settings (the wide rows default to larger leaves, Ct and blocks; the
+    // median and LBVH rows have no SAH settings).
+    const std::string_view source = "max_leaf=4,ct=1,block=1";
     for (const std::string from : {"binned", "sweep", "median", "lbvh"}) {
-        // Leaves of up to 4 and, for the SAH rows, Ct 1 (the median and LBVH rows have no ct).
-        const bool sah = from == "binned" || from == "sweep";
-        const AnyAccel binary =
-            build_accel("bvh:" + from + ",max_leaf=4" + (sah ? ",ct=1" : ""), soup.input());
+        const AnyAccel binary = build_accel(test::spec_with("bvh:" + from, source), soup.input());
         const AccelInfo bi = accel_info(binary);
         for (const char* wide : {"bvh4", "bvh8", "bvh8q"}) {
             CAPTURE(from, wide);
-            // The binary tree's leaf bound and traversal cost (the wide rows default to larger).
             const AnyAccel w =
-                build_accel(std::string(wide) + ",from=" + from + ",max_leaf=4,ct=1", soup.input());
+                build_accel(test::spec_with(wide, source) + ",from=" + from, soup.input());
             REQUIRE(accel_validate(w).empty());
             const AccelInfo wi = accel_info(w);
             CHECK(wi.leaves == bi.leaves);  // leaves are kept as the binary build made them

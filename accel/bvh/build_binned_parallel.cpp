@@ -229,7 +229,8 @@ private:
             sweep(bins, ch, cl, best, best_axis, best_bin);
             if (best < std::numeric_limits<float>::infinity()) {
                 const float area = r.box.half_area();
-                const float leaf_cost = config_.intersection_cost * static_cast<float>(n) * area;
+                const float leaf_cost =
+                    config_.intersection_cost * bvh_detail::sah_count(config_, n) * area;
                 const float split_cost =
                     config_.traversal_cost * area + config_.intersection_cost * best;
                 if (n <= config_.max_leaf_size && leaf_cost <= split_cost) {
@@ -331,8 +332,8 @@ private:
             for (std::uint32_t p = 0; p + 1 < m; ++p) {
                 acc.extend(bins.box[base + full[p]]);
                 cnt += bins.prims[base + full[p]];
-                const float cost = acc.half_area_filled() * static_cast<float>(cnt) +
-                                   right_area[p] * static_cast<float>(right_count[p]);
+                const float cost = acc.half_area_filled() * bvh_detail::sah_count(config_, cnt) +
+                                   right_area[p] * bvh_detail::sah_count(config_, right_count[p]);
                 if (cost < best) {
                     best = cost;
                     best_axis = a;

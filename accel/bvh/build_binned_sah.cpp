@@ -153,8 +153,8 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
                 if (cnt == 0 || right_count[k] == 0) {
                     continue;
                 }
-                const float cost = acc.surface_area() * static_cast<float>(cnt) +
-                                   right_area[k] * static_cast<float>(right_count[k]);
+                const float cost = acc.surface_area() * bvh_detail::sah_count(t.config, cnt) +
+                                   right_area[k] * bvh_detail::sah_count(t.config, right_count[k]);
                 if (cost < best) {
                     best = cost;
                     best_axis = axis;
@@ -166,7 +166,8 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }
         const float area = box.surface_area();
-        const float leaf_cost = t.config.intersection_cost * static_cast<float>(n) * area;
+        const float leaf_cost =
+            t.config.intersection_cost * bvh_detail::sah_count(t.config, n) * area;
         const float split_cost = t.config.traversal_cost * area + t.config.intersection_cost * best;
         if (n <= t.config.max_leaf_size && leaf_cost <= split_cost) {
             return std::nullopt;

@@ -48,6 +48,7 @@ Bvh::Config clamped(const Bvh::Config& cfg) {
     c.max_leaf_size = std::clamp(c.max_leaf_size, 1u, BvhNode::max_prim_count);
     c.bin_count = std::max(c.bin_count, 1u);
     c.morton_bits = std::clamp(c.morton_bits, 1u, 10u);
+    c.sah_block = std::clamp(c.sah_block, 1u, 64u);
     return c;
 }
 

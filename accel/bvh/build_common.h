@@ -142,14 +142,20 @@ std::uint32_t ceil_log2(std::uint64_t n);
 /// The configuration with every field clamped to its documented range.
 Bvh::Config clamped(const Bvh::Config& cfg);
 
+/// n primitives as the SAH counts them, in started blocks of cfg.sah_block: ceil(n / block), as
+/// Embree's builders count them for leaves tested a SIMD block at a time (its sahBlockSize).
+inline float sah_count(const Bvh::Config& cfg, std::uint32_t n) {
+    return static_cast<float>((n + cfg.sah_block - 1) / cfg.sah_block);
+}
+
 /// True when the SAH makes a range of n primitives a leaf whatever its splits: it fits one and
-/// Ci * n <= Ct, so its leaf cost Ci * n * A is at most Ct * A, which no split's
-/// Ct * A + Ci * (A_L n_L + A_R n_R) undercuts (for a finite area A; rounding is monotone, so in
-/// floats too). The SAH builders make such ranges leaves without binning or sweeping them, as
+/// Ci * n <= Ct (n as sah_count counts it), so its leaf cost Ci * n * A is at most Ct * A, which no
+/// split's Ct * A + Ci * (A_L n_L + A_R n_R) undercuts (for a finite area A; rounding is monotone,
+/// so in floats too). The SAH builders make such ranges leaves without binning or sweeping them, as
 /// Embree's builders make every range of up to minLeafSize primitives a leaf.
 inline bool sah_leaf_anyway(const Bvh::Config& cfg, std::uint32_t n) {
     return n <= cfg.max_leaf_size &&
-           cfg.intersection_cost * static_cast<float>(n) <= cfg.traversal_cost;
+           cfg.intersection_cost * sah_count(cfg, n) <= cfg.traversal_cost;
 }
 
 /// A split of the id range [b, e): [b, mid) goes left, [mid, e) right (b < mid < e).

@@ -40,8 +40,8 @@ AxisBest sweep_axis(const bvh_detail::TopDown& t,
         AxisBest best;
         for (std::uint32_t i = lo; i < hi; ++i) {
             if (i > b) {
-                const float cost = left.surface_area() * static_cast<float>(i - b) +
-                                   right_area[i] * static_cast<float>(e - i);
+                const float cost = left.surface_area() * bvh_detail::sah_count(t.config, i - b) +
+                                   right_area[i] * bvh_detail::sah_count(t.config, e - i);
                 if (cost < best.cost) {
                     best = {cost, i};
                 }
@@ -135,7 +135,8 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
                 best_mid = b + n / 2;
             }
             const float area = box.surface_area();
-            const float leaf_cost = t.config.intersection_cost * static_cast<float>(n) * area;
+            const float leaf_cost =
+                t.config.intersection_cost * bvh_detail::sah_count(t.config, n) * area;
             const float split_cost =
                 t.config.traversal_cost * area + t.config.intersection_cost * best;
             if (n <= t.config.max_leaf_size && leaf_cost <= split_cost) {

@@ -30,6 +30,7 @@ struct Bvh {
         float traversal_cost = 1.0f;      ///< SAH cost of one node visit
         float intersection_cost = 1.0f;   ///< SAH cost of one primitive test
         std::uint32_t morton_bits = 10;   ///< LBVH bits per axis (clamped to [1, 10]; 30-bit codes)
+        std::uint32_t sah_block = 1;      ///< SAH counts primitives in blocks of this many
 
         friend bool operator==(const Config&, const Config&) = default;
     };

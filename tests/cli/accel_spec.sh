@@ -11,7 +11,7 @@ for leaf in 1 8; do
     expect_ok "spec max_leaf=$leaf" trace --repeat 1 --no-warmup --scene "$tmp/spec_soup.ply" \
         --rays "$tmp/spec.rays" --accel "bvh:binned,max_leaf=$leaf" --stats --hits "$tmp/spec_$leaf.hits"
     cp "$tmp/out" "$tmp/spec_$leaf.json"
-    grep -q "\"accel\":\"bvh:binned,max_leaf=$leaf,bins=16,ct=4,ci=1,threads=0\"" "$tmp/spec_$leaf.json" ||
+    grep -q "\"accel\":\"bvh:binned,max_leaf=$leaf,bins=16,ct=4,ci=1,block=1,threads=0\"" "$tmp/spec_$leaf.json" ||
         { echo "FAIL (spec): JSON does not name the canonical spec: $(cat "$tmp/spec_$leaf.json")"; fail=1; }
     "$RTLAB" compare "$tmp/spec_ref.hits" "$tmp/spec_$leaf.hits" >/dev/null ||
         { echo "FAIL (spec): bvh:binned,max_leaf=$leaf differs from brute force"; fail=1; }

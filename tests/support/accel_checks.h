@@ -8,12 +8,36 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace rtlab::test {
+
+/// `row` followed by ",key=value" for each entry of `settings` ("key=value,key=value...") whose key
+/// registry row `row` declares: one set of tree settings spelled the same way for rows with and
+/// without, say, SAH costs.
+inline std::string spec_with(const std::string& row, std::string_view settings) {
+    const AccelEntry* e = find_accel(row);
+    REQUIRE(e != nullptr);
+    std::string out = row;
+    while (!settings.empty()) {
+        const std::size_t comma = settings.find(',');
+        const std::string_view kv = settings.substr(0, comma);
+        settings = comma == std::string_view::npos ? "" : settings.substr(comma + 1);
+        const std::string_view key = kv.substr(0, kv.find('='));
+        if (std::any_of(e->params.begin(), e->params.end(),
+                        [&](const ParamSpec& p) { return p.key == key; })) {
+            out += ",";
+            out += kv;
+        }
+    }
+    return out;
+}
 
 /// Specs of row e: its defaults, and for each parameter one spec with only that parameter moved
 /// to an extreme of its range (the minimum, or the maximum where the minimum is the default).
