@@ -273,11 +273,12 @@ ParamSpec with_max(ParamSpec p, double value) {
 // and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
 const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
 const ParamSpec sah_ct = with_default(bvh_ct, 4);
-// The wide layouts' source trees count primitives in blocks of 4, their SoA leaves' group (one
-// 4-lane test, half of an 8-lane one): bvh8 traced the SF 4 mesh 1.04x as fast as with 1, paired
-// with Embree (watertight + robust 0.99-1.01x; analytic SF 4 1.00-1.02x; docs/results.md, issue
-// 12, session 28).
-const ParamSpec wide_block = with_default(sah_block, 4);
+// The layouts with SoA leaves (bvh4, bvh8, bvh8q, bvh:pair) build source trees that count
+// primitives in blocks of 4, the leaves' group (one 4-lane test, half of an 8-lane one): bvh8
+// traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust
+// 0.99-1.01x; analytic SF 4 1.00-1.02x), bvh:pair 1.02-1.04x (spheres 1.00-1.01x;
+// docs/results.md, issue 12, session 28).
+const ParamSpec soa_block = with_default(sah_block, 4);
 // A quantised node stores leaf counts in 16 bits.
 const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
@@ -311,7 +312,7 @@ const AccelEntry registry_rows[] = {
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
      "of the split first",
-     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, sah_block,
+     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, soa_block,
       morton_bits, threads},
      &layout_row<&PairBvh::convert>},
     {"bvh:sweep",
@@ -324,18 +325,18 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
       morton_bits, threads},
      &layout_row<&collapse_bvh<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
       morton_bits, threads},
      &layout_row<&collapse_bvh<8>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, wide_block,
+     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, soa_block,
       morton_bits, threads},
      &layout_row<&quantize_bvh8>},
     {"kdtree:sah",
