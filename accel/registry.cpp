@@ -276,8 +276,8 @@ const ParamSpec sah_ct = with_default(bvh_ct, 4);
 // The layouts with SoA leaves (bvh4, bvh8, bvh8q, bvh:pair) build source trees that count
 // primitives in blocks of 4, the leaves' group (one 4-lane test, half of an 8-lane one): bvh8
 // traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust
-// 0.99-1.01x; analytic SF 4 1.00-1.02x), bvh:pair 1.02-1.04x (spheres 1.00-1.01x;
-// docs/results.md, issue 12, session 28).
+// 0.99-1.01x; analytic SF 4 1.00-1.02x); bvh:pair traced within noise (0.98-1.03x) and built
+// its source tree in 25-35% less time (docs/results.md, issue 12, session 28).
 const ParamSpec soa_block = with_default(sah_block, 4);
 // A quantised node stores leaf counts in 16 bits.
 const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
