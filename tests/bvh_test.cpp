@@ -387,9 +387,7 @@ TEST_CASE("info() reports the analytic SAH cost of a two-leaf tree", "[accel][bv
     CAPTURE(builder);
     const std::vector<Bounds3f> boxes{{{0, 0, 0}, {1, 1, 1}}, {{2, 0, 0}, {3, 1, 1}}};
     // Rows without cost parameters (the builder ignores them) report with Ct = Ci = 1.
-    const auto& params = find_accel(builder)->params;
-    const bool has_costs =
-        std::any_of(params.begin(), params.end(), [](const ParamSpec& p) { return p.key == "ct"; });
+    const bool has_costs = test::declares(*find_accel(builder), "ct");
     const Bvh bvh = build_with(boxes, builder, 1, has_costs ? ",ct=2,ci=3" : "");
     const double ct = static_cast<double>(bvh.config.traversal_cost);
     const double ci = static_cast<double>(bvh.config.intersection_cost);

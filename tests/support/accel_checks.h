@@ -18,6 +18,12 @@
 
 namespace rtlab::test {
 
+/// True when registry row e declares parameter `key`.
+inline bool declares(const AccelEntry& e, std::string_view key) {
+    return std::any_of(e.params.begin(), e.params.end(),
+                       [&](const ParamSpec& p) { return p.key == key; });
+}
+
 /// `row` followed by ",key=value" for each entry of `settings` ("key=value,key=value...") whose key
 /// registry row `row` declares: one set of tree settings spelled the same way for rows with and
 /// without, say, SAH costs.
@@ -29,9 +35,7 @@ inline std::string spec_with(const std::string& row, std::string_view settings) 
         const std::size_t comma = settings.find(',');
         const std::string_view kv = settings.substr(0, comma);
         settings = comma == std::string_view::npos ? "" : settings.substr(comma + 1);
-        const std::string_view key = kv.substr(0, kv.find('='));
-        if (std::any_of(e->params.begin(), e->params.end(),
-                        [&](const ParamSpec& p) { return p.key == key; })) {
+        if (declares(*e, kv.substr(0, kv.find('=')))) {
             out += ",";
             out += kv;
         }
