@@ -67,6 +67,16 @@ benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b
 /// The issue-12 suite's structures: the BVH-family rows of bench_specs().
 std::vector<std::string> issue12_layout_specs();
 
+/// The layouts of the suite's paired rows: the wide ones and bvh:pair (the table's best layouts).
+bool issue12_paired_layout(const std::string& spec);
+
+/// The shortest timed sample of a paired row (seconds; shorter with --quick).
+double issue12_min_sample();
+
+/// The settings of a paired two-thread / one-thread row (issue12/scaling/...): 11 pairs (3 with
+/// --quick), manual time in milliseconds.
+benchmark::internal::Benchmark* issue12_scaling(benchmark::internal::Benchmark* b);
+
 /// What an issue-12 tracer is built for.
 struct Issue12Key {
     std::string scene;

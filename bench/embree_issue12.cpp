@@ -19,15 +19,18 @@
 //       (geometry upload untimed), one thread, in alternation (order swapped from pair to pair).
 //       Counters: ratio (median over the pairs of our time / Embree's: lower is faster),
 //       ratio_q1, ratio_q3, pairs.
+//   issue12/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
+//       qualities) or medium's trace of the mesh scene with TBB limited to one thread and to two,
+//       in alternation (bench/paired.h); ratio is the median speed-up, as for our rows.
 #include "accel/any_accel.h"
 #include "bench/benchmarks.h"
 #include "bench/embree_scene.h"
+#include "bench/paired.h"
 #include "bench/trace_fixture.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -74,40 +77,6 @@ void bm_build(benchmark::State& state, EmbreeQuality q, std::string scene, int t
     state.counters["bytes/prim"] = bytes / prims;
 }
 
-/// Wall seconds one call of f takes.
-template <class F>
-double seconds_once(const F& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// Wall seconds of `passes` calls of f, after one untimed call (the other side's sample has just
-/// filled the caches with its own data).
-template <class F>
-double seconds_of(int passes, const F& f) {
-    f();
-    return seconds_once([&] {
-        for (int p = 0; p < passes; ++p) {
-            f();
-        }
-    });
-}
-
-/// The value at fraction q of sorted v (nearest rank).
-double quantile(const std::vector<double>& v, double q) {
-    return v[static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)))];
-}
-
-/// The median and quartiles of the per-pair ratios, and their count, as the row's counters.
-void set_ratio_counters(benchmark::State& state, std::vector<double> ratios) {
-    std::sort(ratios.begin(), ratios.end());
-    state.counters["ratio"] = quantile(ratios, 0.5);
-    state.counters["ratio_q1"] = quantile(ratios, 0.25);
-    state.counters["ratio_q3"] = quantile(ratios, 0.75);
-    state.counters["pairs"] = static_cast<double>(ratios.size());
-}
-
 void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const BuiltScene* built = nullptr;
@@ -125,22 +94,14 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     const auto theirs = [&] { embree.run(*built->scene, rays, kind); };
     // As many passes as make the slower side's sample last the minimum (the same count for both,
     // so a pair compares equal work).
-    const double min_sample = quick_mode() ? 0.002 : 0.02;
     const double one = std::max(seconds_of(1, ours), seconds_of(1, theirs));
-    const int passes = std::max(1, static_cast<int>(std::ceil(min_sample / std::max(one, 1e-9))));
+    const int passes =
+        std::max(1, static_cast<int>(std::ceil(issue12_min_sample() / std::max(one, 1e-9))));
     std::vector<double> ratios;
-    for (auto _ : state) {
-        const bool ours_first = ratios.size() % 2 == 0;
-        double t_ours = 0, t_embree = 0;
-        if (ours_first) {
-            t_ours = seconds_of(passes, ours);
-            t_embree = seconds_of(passes, theirs);
-        } else {
-            t_embree = seconds_of(passes, theirs);
-            t_ours = seconds_of(passes, ours);
-        }
-        state.SetIterationTime(t_ours + t_embree);
-        ratios.push_back(t_embree / t_ours);
+    for (const PairTimes& p : alternate(
+             state, [&] { return seconds_of(passes, ours); },
+             [&] { return seconds_of(passes, theirs); })) {
+        ratios.push_back(p.second / p.first);  // Embree's time over ours
     }
     set_ratio_counters(state, std::move(ratios));
     state.counters["passes"] = passes;
@@ -163,30 +124,37 @@ void bm_paired_build(benchmark::State& state, std::string spec, std::string scen
         return 1e-3 * e.commit();
     };
     std::vector<double> ratios;
-    for (auto _ : state) {
-        double t_ours = 0, t_embree = 0;
-        if (ratios.size() % 2 == 0) {
-            t_ours = ours();
-            t_embree = theirs();
-        } else {
-            t_embree = theirs();
-            t_ours = ours();
-        }
-        state.SetIterationTime(t_ours + t_embree);
-        ratios.push_back(t_ours / t_embree);
+    for (const PairTimes& p : alternate(state, ours, theirs)) {
+        ratios.push_back(p.first / p.second);  // our time over Embree's
     }
     set_ratio_counters(state, std::move(ratios));
 }
 
-/// The layouts the paired rows run: the wide ones and bvh:pair (the best layouts of the table).
-bool paired_layout(const std::string& spec) {
-    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh8q,") ||
-           spec.starts_with("bvh:pair,");
+void bm_scaling_build(benchmark::State& state, EmbreeQuality q, std::string scene) {
+    const Scene& s = bench_scene(scene).scene;
+    time_scaling(state, [&] {
+        EmbreeScene e(s, q.quality);  // geometry upload: not timed
+        return 1e-3 * e.commit();
+    });
+}
+
+void bm_scaling_trace(benchmark::State& state, std::string scene, RayKind kind) {
+    const BuiltScene* built = nullptr;
+    try {
+        built = &cached_embree_scene(scene, RTC_BUILD_QUALITY_MEDIUM);
+    } catch (const std::exception& ex) {
+        state.SkipWithError(ex.what());
+        return;
+    }
+    const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
+    EmbreePass embree(rays.size());
+    time_scaling_passes(state, issue12_min_sample(),
+                        [&] { embree.run(*built->scene, rays, kind); });
 }
 
 void register_paired(const std::vector<std::string>& scenes, const std::string& mesh) {
     for (const std::string& spec : issue12_layout_specs()) {
-        if (!paired_layout(spec)) {
+        if (!issue12_paired_layout(spec)) {
             continue;
         }
         for (const std::string& scene : scenes) {
@@ -244,6 +212,16 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
         }
     }
     register_paired(scenes, mesh);
+    for (const EmbreeQuality& q : embree_qualities) {
+        const std::string name =
+            std::string("issue12/scaling/embree:") + q.name + "/build/" + mesh + "/threads:2";
+        issue12_scaling(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, q, mesh));
+    }
+    for (RayKind k : issue_kinds) {
+        const std::string name = "issue12/scaling/embree:medium/" + std::string(to_string(k)) +
+                                 "/" + mesh + "/threads:2";
+        issue12_scaling(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_trace, mesh, k));
+    }
     // The builds the target table sets against Embree medium's: the binary default and bvh8's.
     for (const std::string& spec : issue12_layout_specs()) {
         if (!spec.starts_with("bvh:pbinned,") && !spec.starts_with("bvh8,")) {

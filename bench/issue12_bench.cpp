@@ -10,11 +10,16 @@
 //       prims.
 //   issue12/build/<spec>/<scene>/threads:<k>  build time of the row from the scene's triangle
 //       bounds, TBB limited to k threads; build_ms is the median of the timed builds.
+//   issue12/scaling/<spec>/<build|kind>/<scene>/threads:2  the same build (every row) or trace of
+//       the mesh scene (the paired layouts) with TBB limited to one thread and to two, timed in
+//       alternation (bench/paired.h). Counters: ratio (median over the pairs of the one-thread
+//       time / the two-thread time: the speed-up), ratio_q1, ratio_q3, pairs (and passes).
 // Scenes: flake_meshfloor4 (SF 4 tessellated uv:16x8 with the floor as two triangles, 1.65M
 // triangles), flake_spheres4 and flake_spheres5 (analytic, no floor); --quick uses sizes 2, 2, 3.
 // Rays: primary, shadow (any hit), diffuse. Threads 1, and 2 for the scaling rows on the mesh.
 #include "accel/any_accel.h"
 #include "bench/benchmarks.h"
+#include "bench/paired.h"
 #include "bench/trace_fixture.h"
 
 #include <benchmark/benchmark.h>
@@ -22,6 +27,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tbb/global_control.h>
 #include <vector>
@@ -53,6 +59,19 @@ std::vector<std::string> issue12_layout_specs() {
         }
     }
     return out;
+}
+
+bool issue12_paired_layout(const std::string& spec) {
+    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh8q,") ||
+           spec.starts_with("bvh:pair,");
+}
+
+double issue12_min_sample() {
+    return quick_mode() ? 0.002 : 0.02;
+}
+
+benchmark::internal::Benchmark* issue12_scaling(benchmark::internal::Benchmark* b) {
+    return b->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(quick_mode() ? 3 : 11);
 }
 
 const SceneTracer& issue12_tracer(const Issue12Key& key) {
@@ -127,6 +146,25 @@ void bm_build(benchmark::State& state, std::string accel, std::string scene, int
     state.counters["sah_cost"] = info.sah_cost;
 }
 
+void bm_scaling_trace(benchmark::State& state, Issue12Key key, RayKind kind) {
+    const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
+    const SceneTracer& t = issue12_tracer(key);
+    TracePass mine(rays.size());
+    time_scaling_passes(state, issue12_min_sample(), [&] { mine.run(t, rays, kind); });
+}
+
+void bm_scaling_build(benchmark::State& state, std::string accel, std::string scene) {
+    const std::vector<Bounds3f> bounds = triangle_bounds(bench_scene(scene).scene);
+    time_scaling(state, [&] {
+        std::optional<AnyAccel> a;
+        const double t = seconds_once([&] {
+            a.emplace(build_accel(accel, BuildInput{bounds, {}}));
+        });
+        benchmark::DoNotOptimize(a);
+        return t;  // the structure is freed after the clock stopped
+    });
+}
+
 }  // namespace
 
 void rtlab::bench::register_issue12_benchmarks() {
@@ -156,6 +194,13 @@ void rtlab::bench::register_issue12_benchmarks() {
                                                                     threads)
                                            ->UseRealTime());
                     }
+                    if (!wt && scene == mesh && issue12_paired_layout(spec)) {
+                        const std::string name = "issue12/scaling/" + spec + "/" +
+                                                 std::string(to_string(k)) + "/" + mesh +
+                                                 "/threads:2";
+                        issue12_scaling(benchmark::RegisterBenchmark(
+                            name.c_str(), bm_scaling_trace, Issue12Key{scene, spec, wt}, k));
+                    }
                 }
             }
         }
@@ -167,6 +212,8 @@ void rtlab::bench::register_issue12_benchmarks() {
                 ->UseManualTime()
                 ->Iterations(quick_mode() ? 1 : 5);
         }
+        const std::string name = "issue12/scaling/" + spec + "/build/" + mesh + "/threads:2";
+        issue12_scaling(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, spec, mesh));
     }
     register_issue12_embree_benchmarks();
 }

@@ -584,6 +584,11 @@ def self_test(plt):
     checks["issue12 build row"] = ("bvh:pbinned), 1 thread / Embree medium build, same triangles | "
                                    "<= 1.0x | 1x | 1.04x [1.01, 1.08] | **below target** |"
                                    in text2)
+    checks["issue12 scaling rows"] = (
+        "| build bvh:pbinned, 2 threads / 1 thread | >= 1.8x | 2x | 1.83x [1.79, 1.9] | met |"
+        in text2 and "| trace embree:medium shadow, 2 threads / 1 thread (wall) | >= 1.8x | 2x | "
+        "1.7x [1.6, 1.75] | **below target** |" in text2 and
+        "| embree:medium | - | - | 1.7x [1.6, 1.75] | - |" in text2)
     checks["issue12 keeps the main report"] = BEGIN in text2 and "### torus" in text2
     checks["issue12 headline"] = "bvh      primary  best bvh:pair,from=pbinned" in text2
     failed = [k for k, ok in checks.items() if not ok]

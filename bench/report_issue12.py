@@ -6,7 +6,8 @@ issue12/build/<accel>/<scene>/threads:<k> and
 issue12/paired/<accel>/<default|watertight>/<plain|robust>/<scene>/<kind>/threads:1 (counters
 ratio, ratio_q1, ratio_q3: ours against Embree medium timed in alternation) and
 issue12/paired_build/<accel>/<scene>/threads:1 (the same counters for builds: our time over
-Embree medium's, lower is faster), where <accel> is a
+Embree medium's, lower is faster) and issue12/scaling/<accel>/<build|kind>/<scene>/threads:2 (the
+same counters for one thread against two in alternation: the speed-up), where <accel> is a
 canonical registry spec or embree:<quality>. "Best rtlab layout" is the best over every registry
 spec in the run (all BVH layouts, binary and wide, whichever are registered) by paired ratio where
 the run has paired rows for that scene and kind, else by median rays/s; "binary" are the specs
@@ -25,6 +26,8 @@ BUILD = re.compile(r"issue12/build/(?P<accel>[^/]+)/(?P<scene>[^/]+)/threads:(?P
 PAIRED = re.compile(r"issue12/paired/(?P<accel>[^/]+)/(?P<methods>[^/]+)/(?P<mode>[^/]+)/"
                     r"(?P<scene>[^/]+)/(?P<kind>[^/]+)/threads:1$")
 PAIRED_BUILD = re.compile(r"issue12/paired_build/(?P<accel>[^/]+)/(?P<scene>[^/]+)/threads:1$")
+SCALING = re.compile(r"issue12/scaling/(?P<accel>[^/]+)/(?P<what>[^/]+)/(?P<scene>[^/]+)/"
+                     r"threads:2$")
 
 
 def family(accel):
@@ -51,7 +54,13 @@ class Issue12:
         self.wall, self.build_wall = {}, {}  # wall-time figures, for the 2 / 1 thread ratios
         self.paired = {}  # (accel, methods, mode, scene, kind) -> (median, q1, q3) vs Embree medium
         self.paired_build = {}  # (accel, scene) -> (median, q1, q3) of our build time / Embree's
+        self.scaling = {}  # (accel, "build" or kind, scene) -> (median, q1, q3) of t1 / t2
         for name, row in rows.items():
+            m = SCALING.match(name)
+            if m:
+                self.scaling[(m["accel"], m["what"], m["scene"])] = (
+                    num(row, "ratio"), num(row, "ratio_q1"), num(row, "ratio_q3"))
+                continue
             m = PAIRED_BUILD.match(name)
             if m:
                 self.paired_build[(m["accel"], m["scene"])] = (
@@ -181,16 +190,35 @@ class Issue12:
             r = self.ratio(self.build_wall.get((a, self.mesh, 1)),
                            self.build_wall.get((a, self.mesh, 2)))
             if r is not None:
-                out.append(self.row(f"build {short(a)}, 2 threads / 1 thread", "1.8", r))
+                out.append(self.row(f"build {short(a)}, 2 threads / 1 thread", "1.8", r,
+                                    paired=self.scaling.get((a, "build", self.mesh))))
         for kind in KINDS:
-            r, a = self.best(self.mesh, kind)
+            _, a = self.best_vs_embree(self.mesh, kind)
             w = lambda acc, t: self.wall.get((acc, "default", "plain", self.mesh, kind, t))
-            if a:
-                out.append(self.row(f"trace {short(a)} {kind}, 2 threads / 1 thread (wall)", "1.8",
-                                    self.ratio(w(a, 2), w(a, 1))))
-            out.append(self.row(f"trace embree:medium {kind}, 2 threads / 1 thread (wall)", "1.8",
-                                self.ratio(w(emb, 2), w(emb, 1))))
+            for acc in ([a] if a else []) + [emb]:
+                out.append(self.row(f"trace {short(acc)} {kind}, 2 threads / 1 thread (wall)",
+                                    "1.8", self.ratio(w(acc, 2), w(acc, 1)),
+                                    paired=self.scaling.get((acc, kind, self.mesh))))
         return out
+
+    def scaling_table(self):
+        """Every structure's paired two-thread / one-thread speed-ups (build and each ray kind)."""
+        accs = sorted({k[0] for k in self.scaling if k[2] == self.mesh},
+                      key=lambda a: (a.startswith("embree:"), a))
+        if not accs:
+            return []
+        out = [f"Two threads / one thread on {self.mesh}, paired (`issue12/scaling/...`: the same "
+               "build or pass over the rays with TBB limited to one thread and to two, in "
+               "alternation, 11 pairs; median speed-up [quartiles]; a pair shares the machine's "
+               "load, so this is the figure the status takes):", "",
+               "| structure | build | " + " | ".join(KINDS) + " |", "|---|---|---|---|---|"]
+        for a in accs:
+            cells = []
+            for what in ["build"] + KINDS:
+                p = self.scaling.get((a, what, self.mesh))
+                cells.append(f"{fmt(p[0])}x [{fmt(p[1])}, {fmt(p[2])}]" if p else "-")
+            out.append(f"| {short(a)} | " + " | ".join(cells) + " |")
+        return out + [""]
 
     def detail(self):
         out = [f"Mrays/s, one thread, {self.mesh} (triangles); nodes and primitive tests per ray "
@@ -263,7 +291,10 @@ def section(rows, prov_line, cpu=False):
              "paired rows, the best layout is the one with the best paired ratio, and the paired "
              "ratio decides the status. The one-thread build rows against Embree have one too "
              "(`issue12/paired_build/...`: our build and Embree medium's commit in alternation, "
-             "11 pairs, the median of our time over Embree's). "
+             "11 pairs, the median of our time over Embree's), and so do the two-thread / "
+             "one-thread rows (`issue12/scaling/...`: one thread and two in alternation, 11 "
+             "pairs, the median speed-up; the wide layouts, bvh:pair and Embree medium for "
+             "traces, every structure for builds; table under Per structure). "
              + ("Basis: CPU time of the measuring thread for one-thread rows (`--cpu`: the "
                 "machine was shared, and with one thread all work runs on that thread), wall "
                 "time for two-thread rows (which a shared machine distorts)." if rep.cpu else
@@ -271,6 +302,7 @@ def section(rows, prov_line, cpu=False):
     lines += rep.table()
     lines += ["", "### Per structure", ""]
     lines += rep.detail()
+    lines += rep.scaling_table()
     lines += ["Headline (also printed by `scripts/demo`):", "", "```"] + rep.headline() + ["```",
                                                                                            "", END]
     return lines
@@ -296,4 +328,8 @@ def synthetic_rows():
         "ratio": 0.52, "ratio_q1": 0.5, "ratio_q3": 0.55}
     rows["issue12/paired_build/" + specs[0] + "/flake_meshfloor2/threads:1"] = {
         "ratio": 1.04, "ratio_q1": 1.01, "ratio_q3": 1.08}
+    rows["issue12/scaling/" + specs[0] + "/build/flake_meshfloor2/threads:2"] = {
+        "ratio": 1.83, "ratio_q1": 1.79, "ratio_q3": 1.9}
+    rows["issue12/scaling/embree:medium/shadow/flake_meshfloor2/threads:2"] = {
+        "ratio": 1.7, "ratio_q1": 1.6, "ratio_q3": 1.75}
     return rows
