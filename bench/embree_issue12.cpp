@@ -31,7 +31,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <optional>
@@ -95,8 +94,7 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     // As many passes as make the slower side's sample last the minimum (the same count for both,
     // so a pair compares equal work).
     const double one = std::max(seconds_of(1, ours), seconds_of(1, theirs));
-    const int passes =
-        std::max(1, static_cast<int>(std::ceil(issue12_min_sample() / std::max(one, 1e-9))));
+    const int passes = passes_for(issue12_min_sample(), one);
     std::vector<double> ratios;
     for (const PairTimes& p : alternate(
              state, [&] { return seconds_of(passes, ours); },

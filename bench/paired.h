@@ -37,6 +37,11 @@ double seconds_of(int passes, const F& f) {
     });
 }
 
+/// How many passes of `one` seconds make a sample of at least min_seconds (at least one).
+inline int passes_for(double min_seconds, double one) {
+    return std::max(1, static_cast<int>(std::ceil(min_seconds / std::max(one, 1e-9))));
+}
+
 /// The seconds of the two samples of one pair.
 struct PairTimes {
     double first;
@@ -106,7 +111,7 @@ void time_scaling_passes(benchmark::State& state, double min_seconds, const F& p
         const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
         one = seconds_of(1, pass);
     }
-    const int passes = std::max(1, static_cast<int>(std::ceil(min_seconds / std::max(one, 1e-9))));
+    const int passes = passes_for(min_seconds, one);
     time_scaling(state, [&] { return seconds_of(passes, pass); });
     state.counters["passes"] = passes;
 }
