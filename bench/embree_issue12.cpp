@@ -33,7 +33,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
-#include <optional>
 #include <string>
 #include <tbb/global_control.h>
 #include <utility>
@@ -109,14 +108,7 @@ void bm_paired_build(benchmark::State& state, std::string spec, std::string scen
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const Scene& s = bench_scene(scene).scene;
     const std::vector<Bounds3f> bounds = triangle_bounds(s);
-    const auto ours = [&] {
-        std::optional<AnyAccel> a;
-        const double t = seconds_once([&] {
-            a.emplace(build_accel(spec, BuildInput{bounds, {}}));
-        });
-        benchmark::DoNotOptimize(a);
-        return t;  // the structure is freed after the clock stopped, as Embree's scene below
-    };
+    const auto ours = [&] { return seconds_to_build(spec, bounds); };
     const auto theirs = [&] {
         EmbreeScene e(s, RTC_BUILD_QUALITY_MEDIUM);  // geometry upload: not timed
         return 1e-3 * e.commit();

@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <optional>
 #include <string>
 #include <tbb/global_control.h>
 #include <vector>
@@ -155,14 +154,7 @@ void bm_scaling_trace(benchmark::State& state, Issue12Key key, RayKind kind) {
 
 void bm_scaling_build(benchmark::State& state, std::string accel, std::string scene) {
     const std::vector<Bounds3f> bounds = triangle_bounds(bench_scene(scene).scene);
-    time_scaling(state, [&] {
-        std::optional<AnyAccel> a;
-        const double t = seconds_once([&] {
-            a.emplace(build_accel(accel, BuildInput{bounds, {}}));
-        });
-        benchmark::DoNotOptimize(a);
-        return t;  // the structure is freed after the clock stopped
-    });
+    time_scaling(state, [&] { return seconds_to_build(accel, bounds); });
 }
 
 }  // namespace

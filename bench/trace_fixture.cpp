@@ -1,10 +1,13 @@
 // Benchmark scenes, ray sets and tracers, generated on first use and cached for the process.
 #include "bench/trace_fixture.h"
 
+#include "accel/any_accel.h"
 #include "bench/benchmarks.h"
+#include "bench/paired.h"
 #include "datasets_gen/generators.h"
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <type_traits>
@@ -201,6 +204,13 @@ std::vector<Bounds3f> triangle_bounds(const Scene& s) {
         }
     }
     return out;
+}
+
+double seconds_to_build(const std::string& spec, const std::vector<Bounds3f>& bounds) {
+    std::optional<AnyAccel> a;
+    const double t = seconds_once([&] { a.emplace(build_accel(spec, BuildInput{bounds, {}})); });
+    benchmark::DoNotOptimize(a);
+    return t;
 }
 
 benchmark::internal::Benchmark* quick_time(benchmark::internal::Benchmark* b) {

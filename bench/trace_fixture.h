@@ -80,6 +80,10 @@ const Scene& build_soup(int sf);
 /// Triangle bounds of a mesh-only scene, in primitive order.
 std::vector<Bounds3f> triangle_bounds(const Scene& s);
 
+/// Seconds to build structure `spec` over `bounds` (build_accel; the structure is freed after the
+/// clock stopped).
+double seconds_to_build(const std::string& spec, const std::vector<Bounds3f>& bounds);
+
 /// Applies quick mode to a registered benchmark: a 0.02 s minimum time instead of the default.
 benchmark::internal::Benchmark* quick_time(benchmark::internal::Benchmark* b);
 
