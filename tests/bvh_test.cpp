@@ -526,7 +526,7 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     const AccelInfo pi = pair.info(), si = source.info();
     CHECK(pi.leaves == si.leaves);
     CHECK(pi.max_depth == si.max_depth);
-    CHECK(pi.sah_cost == si.sah_cost);
+    CHECK(pi.sah_cost == Approx(si.sah_cost).epsilon(1e-12));  // summed in another order
     CHECK(source.nodes.size() == (count == 0 ? 0 : 2 * pi.nodes + 1));
     // Same leaves, same primitive tests: the closest hit's t is the same on every ray.
     for (const Rayf& ray : test::random_rays(soup, 3, 200)) {

@@ -13,8 +13,7 @@ PairBvh PairBvh::convert(const Bvh& b, ChildOrder order) {
     p.prim_ids = b.prim_ids;
     p.prim_count = b.prim_count;
     p.unreferenced_count = b.unreferenced_count;
-    p.max_leaf_size = b.config.max_leaf_size;
-    p.sah_cost = b.info().sah_cost;
+    p.config = b.config;
     if (b.nodes.empty()) {
         return p;
     }
@@ -81,31 +80,40 @@ AccelInfo PairBvh::info() const {
     i.bytes_per_prim =
         prim_count == 0 ? 0.0 : static_cast<double>(i.bytes) / static_cast<double>(prim_count);
     i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
-    i.sah_cost = sah_cost;
     if (prim_ids.empty()) {
         return i;
     }
+    const double ct = static_cast<double>(config.traversal_cost);
+    const double ci = static_cast<double>(config.intersection_cost);
+    const double root_area = static_cast<double>(root_box.surface_area());
+    // Computed here, not at conversion: a walk over the tree that a build need not wait for.
+    double cost =
+        root_count > 0 ? root_area * ci * static_cast<double>(root_count) : root_area * ct;
     if (root_count > 0) {
         i.leaves = 1;
-        return i;
-    }
-    struct Item {
-        std::uint32_t node, depth;
-    };
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        for (int c = 0; c < 2; ++c) {
+    } else {
+        struct Item {
+            std::uint32_t node, depth;
+        };
+        std::vector<Item> stack{{0, 0}};
+        while (!stack.empty()) {
+            const Item it = stack.back();
+            stack.pop_back();
             const PairNode& n = nodes[it.node];
-            if (n.count_of(c) > 0) {
-                ++i.leaves;
-                i.max_depth = std::max(i.max_depth, it.depth + 1);
-            } else {
-                stack.push_back({n.child[c], it.depth + 1});
+            for (int c = 0; c < 2; ++c) {
+                const double area = static_cast<double>(n.child_bounds(c).surface_area());
+                if (n.count_of(c) > 0) {
+                    ++i.leaves;
+                    i.max_depth = std::max(i.max_depth, it.depth + 1);
+                    cost += area * ci * static_cast<double>(n.count_of(c));
+                } else {
+                    cost += area * ct;
+                    stack.push_back({n.child[c], it.depth + 1});
+                }
             }
         }
     }
+    i.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
     return i;
 }
 
@@ -119,7 +127,7 @@ std::string PairBvh::validate() const {
     }
     std::vector<char> slot_used(prim_ids.size(), 0);
     const auto use_leaf = [&](std::uint32_t first, std::uint32_t count) -> std::string {
-        if (count > max_leaf_size) {
+        if (count > config.max_leaf_size) {
             return "leaf of " + std::to_string(count) + " > max_leaf_size";
         }
         return bvh_detail::use_leaf_slots(prim_ids, slot_used, first, count);

@@ -65,8 +65,7 @@ struct PairBvh {
     std::uint32_t root_count = 0;          ///< root: 0 (inner) or its primitive count (leaf)
     std::uint32_t prim_count = 0;          ///< number of input boxes
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
-    std::uint32_t max_leaf_size = 0;       ///< the source's leaf size bound
-    double sah_cost = 0;                   ///< the source Bvh's SAH cost (same tree)
+    Bvh::Config config;                    ///< the source binary build's configuration
     /// True when tracers should store triangle data in slot order and test whole leaves with the
     /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
     bool soa_leaves = true;
@@ -104,11 +103,12 @@ struct PairBvh {
     /// The root box.
     Bounds3f bounds() const { return root_box; }
 
-    /// Sizes (nodes: pair nodes; bytes: nodes and ids), depth and the source's SAH cost.
+    /// Sizes (nodes: pair nodes; bytes: nodes and ids), depth and the SAH cost with the source's
+    /// costs (the source Bvh's value: same tree, same boxes).
     AccelInfo info() const;
 
     /// Empty when every invariant holds (each usable primitive in exactly one leaf, children
-    /// inside their parent's box, leaves of at most max_leaf_size, depth <= 64, every node
+    /// inside their parent's box, leaves of at most config.max_leaf_size, depth <= 64, every node
     /// reached once); else the first violation.
     std::string validate() const;
 
