@@ -22,7 +22,6 @@
 //   issue12/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
 //       qualities) or medium's trace of the mesh scene with TBB limited to one thread and to two,
 //       in alternation (bench/paired.h); ratio is the median speed-up, as for our rows.
-#include "accel/any_accel.h"
 #include "bench/benchmarks.h"
 #include "bench/embree_scene.h"
 #include "bench/paired.h"
