@@ -38,6 +38,24 @@ std::string use_leaf_slots(std::span<const std::uint32_t> prim_ids,
 std::string check_slots_covered(std::span<const std::uint32_t> prim_ids,
                                 const std::vector<char>& used);
 
+/// The info() walks: visit(node, depth, push) for every node reached depth first from node 0,
+/// where push(child, depth) schedules a child (the last one pushed is visited next).
+template <class F>
+void walk_from_root(const F& visit) {
+    struct Item {
+        std::uint32_t node, depth;
+    };
+    std::vector<Item> stack{{0, 0}};
+    const auto push = [&](std::uint32_t node, std::uint32_t depth) {
+        stack.push_back({node, depth});
+    };
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        visit(it.node, it.depth, push);
+    }
+}
+
 /// The node bookkeeping of the validate() walks: every node reached once, none deeper than 64,
 /// all of them reached.
 class NodeWalk {

@@ -26,25 +26,19 @@ AccelInfo Bvh::info() const {
     const double ci = static_cast<double>(config.intersection_cost);
     const double root_area = static_cast<double>(nodes[0].bounds().surface_area());
     double cost = 0;
-    struct Item {
-        std::uint32_t node, depth;
-    };
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const BvhNode& n = nodes[it.node];
+    bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
+        const BvhNode& n = nodes[node];
         const double area = static_cast<double>(n.bounds().surface_area());
         if (n.is_leaf()) {
             ++i.leaves;
-            i.max_depth = std::max(i.max_depth, it.depth);
+            i.max_depth = std::max(i.max_depth, depth);
             cost += area * ci * static_cast<double>(n.prim_count());
         } else {
             cost += area * ct;
-            stack.push_back({n.first, it.depth + 1});
-            stack.push_back({n.first + 1, it.depth + 1});
+            push(n.first, depth + 1);
+            push(n.first + 1, depth + 1);
         }
-    }
+    });
     i.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
     return i;
 }

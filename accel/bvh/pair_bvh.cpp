@@ -92,26 +92,20 @@ AccelInfo PairBvh::info() const {
     if (root_count > 0) {
         i.leaves = 1;
     } else {
-        struct Item {
-            std::uint32_t node, depth;
-        };
-        std::vector<Item> stack{{0, 0}};
-        while (!stack.empty()) {
-            const Item it = stack.back();
-            stack.pop_back();
-            const PairNode& n = nodes[it.node];
+        bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
+            const PairNode& n = nodes[node];
             for (int c = 0; c < 2; ++c) {
                 const double area = static_cast<double>(n.child_bounds(c).surface_area());
                 if (n.count_of(c) > 0) {
                     ++i.leaves;
-                    i.max_depth = std::max(i.max_depth, it.depth + 1);
+                    i.max_depth = std::max(i.max_depth, depth + 1);
                     cost += area * ci * static_cast<double>(n.count_of(c));
                 } else {
                     cost += area * ct;
-                    stack.push_back({n.child[c], it.depth + 1});
+                    push(n.child[c], depth + 1);
                 }
             }
-        }
+        });
     }
     i.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
     return i;

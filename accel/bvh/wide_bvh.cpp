@@ -37,26 +37,20 @@ AccelInfo WideBvh<N>::info() const {
     const double ci = static_cast<double>(config.intersection_cost);
     const double root_area = static_cast<double>(bounds().surface_area());
     double cost = root_area * ct;  // the root node itself
-    struct Item {
-        std::uint32_t node, depth;
-    };
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const WideNode<N>& n = nodes[it.node];
+    bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
+        const WideNode<N>& n = nodes[node];
         for (unsigned i = 0; i < N && n.occupied(i); ++i) {
             const double area = static_cast<double>(n.bounds(i).surface_area());
             if (n.is_leaf(i)) {
                 ++info.leaves;
-                info.max_depth = std::max(info.max_depth, it.depth + 1);
+                info.max_depth = std::max(info.max_depth, depth + 1);
                 cost += area * ci * static_cast<double>(n.count[i]);
             } else {
                 cost += area * ct;
-                stack.push_back({n.child[i], it.depth + 1});
+                push(n.child[i], depth + 1);
             }
         }
-    }
+    });
     info.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
     return info;
 }
