@@ -56,6 +56,30 @@ void walk_from_root(const F& visit) {
     }
 }
 
+/// The sizes every BVH layout's info() reports: node count, bytes, bytes per input primitive and
+/// one reference per primitive.
+AccelInfo size_info(std::size_t nodes, std::size_t bytes, std::uint32_t prim_count);
+
+/// The SAH cost of the info() walks, sum(inner A * Ct) + sum(leaf A * n * Ci) over A(root) with
+/// the build's Ct and Ci, with the leaf count and depth beside it. Terms are summed in the order
+/// they are added, so layouts that walk the same tree alike report the same cost.
+class SahTally {
+public:
+    SahTally(const Bvh::Config& cfg, const Bounds3f& root);
+    /// An inner node (or inner child slot) of box b.
+    void inner(const Bounds3f& b);
+    /// A leaf of `count` primitives and box b at `depth`.
+    void leaf(const Bounds3f& b, std::uint32_t count, std::uint32_t depth);
+    /// Stores leaves, max_depth and sah_cost in i (Ci * prims when the root has no area).
+    void finish(AccelInfo& i, std::size_t prims) const;
+
+private:
+    double ct_, ci_, root_area_;
+    double cost_ = 0;
+    std::uint64_t leaves_ = 0;
+    std::uint32_t max_depth_ = 0;
+};
+
 /// The node bookkeeping of the validate() walks: every node reached once, none deeper than 64,
 /// all of them reached.
 class NodeWalk {

@@ -13,33 +13,24 @@
 namespace rtlab {
 
 AccelInfo Bvh::info() const {
-    AccelInfo i;
-    i.nodes = nodes.size();
-    i.bytes = nodes.size() * sizeof(BvhNode) + prim_ids.size() * sizeof(std::uint32_t);
-    i.bytes_per_prim =
-        prim_count == 0 ? 0.0 : static_cast<double>(i.bytes) / static_cast<double>(prim_count);
-    i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    AccelInfo i = bvh_detail::size_info(
+        nodes.size(), nodes.size() * sizeof(BvhNode) + prim_ids.size() * sizeof(std::uint32_t),
+        prim_count);
     if (nodes.empty()) {
         return i;
     }
-    const double ct = static_cast<double>(config.traversal_cost);
-    const double ci = static_cast<double>(config.intersection_cost);
-    const double root_area = static_cast<double>(nodes[0].bounds().surface_area());
-    double cost = 0;
+    bvh_detail::SahTally sah(config, nodes[0].bounds());
     bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
         const BvhNode& n = nodes[node];
-        const double area = static_cast<double>(n.bounds().surface_area());
         if (n.is_leaf()) {
-            ++i.leaves;
-            i.max_depth = std::max(i.max_depth, depth);
-            cost += area * ci * static_cast<double>(n.prim_count());
+            sah.leaf(n.bounds(), n.prim_count(), depth);
         } else {
-            cost += area * ct;
+            sah.inner(n.bounds());
             push(n.first, depth + 1);
             push(n.first + 1, depth + 1);
         }
     });
-    i.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
+    sah.finish(i, prim_ids.size());
     return i;
 }
 
@@ -147,6 +138,37 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     });
     bvh.prim_ids = std::move(ids);
     return bvh;
+}
+
+AccelInfo bvh_detail::size_info(std::size_t nodes, std::size_t bytes, std::uint32_t prim_count) {
+    AccelInfo i;
+    i.nodes = nodes;
+    i.bytes = bytes;
+    i.bytes_per_prim =
+        prim_count == 0 ? 0.0 : static_cast<double>(bytes) / static_cast<double>(prim_count);
+    i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    return i;
+}
+
+bvh_detail::SahTally::SahTally(const Bvh::Config& cfg, const Bounds3f& root)
+    : ct_(static_cast<double>(cfg.traversal_cost))
+    , ci_(static_cast<double>(cfg.intersection_cost))
+    , root_area_(static_cast<double>(root.surface_area())) {}
+
+void bvh_detail::SahTally::inner(const Bounds3f& b) {
+    cost_ += static_cast<double>(b.surface_area()) * ct_;
+}
+
+void bvh_detail::SahTally::leaf(const Bounds3f& b, std::uint32_t count, std::uint32_t depth) {
+    ++leaves_;
+    max_depth_ = std::max(max_depth_, depth);
+    cost_ += static_cast<double>(b.surface_area()) * ci_ * static_cast<double>(count);
+}
+
+void bvh_detail::SahTally::finish(AccelInfo& i, std::size_t prims) const {
+    i.leaves = leaves_;
+    i.max_depth = max_depth_;
+    i.sah_cost = root_area_ > 0 ? cost_ / root_area_ : ci_ * static_cast<double>(prims);
 }
 
 std::string bvh_detail::NodeWalk::visit(std::uint32_t node, std::uint32_t depth) {

@@ -74,40 +74,31 @@ PairBvh PairBvh::convert(const Bvh& b, ChildOrder order) {
 }
 
 AccelInfo PairBvh::info() const {
-    AccelInfo i;
-    i.nodes = nodes.size();
-    i.bytes = nodes.size() * sizeof(PairNode) + prim_ids.size() * sizeof(std::uint32_t);
-    i.bytes_per_prim =
-        prim_count == 0 ? 0.0 : static_cast<double>(i.bytes) / static_cast<double>(prim_count);
-    i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    AccelInfo i = bvh_detail::size_info(
+        nodes.size(), nodes.size() * sizeof(PairNode) + prim_ids.size() * sizeof(std::uint32_t),
+        prim_count);
     if (prim_ids.empty()) {
         return i;
     }
-    const double ct = static_cast<double>(config.traversal_cost);
-    const double ci = static_cast<double>(config.intersection_cost);
-    const double root_area = static_cast<double>(root_box.surface_area());
     // Computed here, not at conversion: a walk over the tree that a build need not wait for.
-    double cost =
-        root_count > 0 ? root_area * ci * static_cast<double>(root_count) : root_area * ct;
+    bvh_detail::SahTally sah(config, root_box);
     if (root_count > 0) {
-        i.leaves = 1;
+        sah.leaf(root_box, root_count, 0);
     } else {
+        sah.inner(root_box);
         bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
             const PairNode& n = nodes[node];
             for (int c = 0; c < 2; ++c) {
-                const double area = static_cast<double>(n.child_bounds(c).surface_area());
                 if (n.count_of(c) > 0) {
-                    ++i.leaves;
-                    i.max_depth = std::max(i.max_depth, depth + 1);
-                    cost += area * ci * static_cast<double>(n.count_of(c));
+                    sah.leaf(n.child_bounds(c), n.count_of(c), depth + 1);
                 } else {
-                    cost += area * ct;
+                    sah.inner(n.child_bounds(c));
                     push(n.child[c], depth + 1);
                 }
             }
         });
     }
-    i.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
+    sah.finish(i, prim_ids.size());
     return i;
 }
 

@@ -23,35 +23,28 @@ Bounds3f WideBvh<N>::bounds() const {
 
 template <unsigned N>
 AccelInfo WideBvh<N>::info() const {
-    AccelInfo info;
-    info.nodes = nodes.size();
-    info.bytes = nodes.size() * sizeof(WideNode<N>) + qnodes.size() * sizeof(QWideNode8) +
-                 prim_ids.size() * sizeof(std::uint32_t);
-    info.bytes_per_prim =
-        prim_count == 0 ? 0.0 : static_cast<double>(info.bytes) / static_cast<double>(prim_count);
-    info.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    AccelInfo info = bvh_detail::size_info(nodes.size(),
+                                           nodes.size() * sizeof(WideNode<N>) +
+                                               qnodes.size() * sizeof(QWideNode8) +
+                                               prim_ids.size() * sizeof(std::uint32_t),
+                                           prim_count);
     if (nodes.empty()) {
         return info;
     }
-    const double ct = static_cast<double>(config.traversal_cost);
-    const double ci = static_cast<double>(config.intersection_cost);
-    const double root_area = static_cast<double>(bounds().surface_area());
-    double cost = root_area * ct;  // the root node itself
+    bvh_detail::SahTally sah(config, bounds());
+    sah.inner(bounds());  // the root node itself
     bvh_detail::walk_from_root([&](std::uint32_t node, std::uint32_t depth, const auto& push) {
         const WideNode<N>& n = nodes[node];
         for (unsigned i = 0; i < N && n.occupied(i); ++i) {
-            const double area = static_cast<double>(n.bounds(i).surface_area());
             if (n.is_leaf(i)) {
-                ++info.leaves;
-                info.max_depth = std::max(info.max_depth, depth + 1);
-                cost += area * ci * static_cast<double>(n.count[i]);
+                sah.leaf(n.bounds(i), n.count[i], depth + 1);
             } else {
-                cost += area * ct;
+                sah.inner(n.bounds(i));
                 push(n.child[i], depth + 1);
             }
         }
     });
-    info.sah_cost = root_area > 0 ? cost / root_area : ci * static_cast<double>(prim_ids.size());
+    sah.finish(info, prim_ids.size());
     return info;
 }
 
