@@ -1,6 +1,7 @@
 // BVH node layout, tree invariants and builder-specific edge cases.
 
 #include "accel/any_accel.h"
+#include "accel/bvh/build_common.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 
@@ -450,12 +451,65 @@ TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[
     }
 }
 
+TEST_CASE("sort keys order floats as they compare; the radix sort is a stable sort on them",
+          "[accel][bvh]") {
+    // The full-sweep builder sorts centres as float_order_key(centre) << 32 | id.
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    const float ascending[] = {-inf,
+                               -std::numeric_limits<float>::max(),
+                               -1.5f,
+                               -1.0f,
+                               -std::numeric_limits<float>::denorm_min(),
+                               0.0f,
+                               std::numeric_limits<float>::denorm_min(),
+                               1.0f,
+                               1.5f,
+                               std::numeric_limits<float>::max(),
+                               inf};
+    for (std::size_t i = 0; i + 1 < std::size(ascending); ++i) {
+        CAPTURE(ascending[i], ascending[i + 1]);
+        CHECK(bvh_detail::float_order_key(ascending[i]) <
+              bvh_detail::float_order_key(ascending[i + 1]));
+    }
+    CHECK(bvh_detail::float_order_key(-0.0f) == bvh_detail::float_order_key(0.0f));
+    // 200,000 keys (several 65536-key blocks), codes from few values so that ties are common,
+    // ids in increasing order: the radix sort on the high 32 bits (3 passes of 11 bits) and on
+    // 30 of them (3 of 10) equal std::stable_sort on those bits.
+    const std::uint32_t bits = GENERATE(32u, 30u, 7u);
+    CAPTURE(bits);
+    test::Rng rng(bits);
+    ScratchVector<std::uint64_t> keys(200000);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const float f = static_cast<float>(static_cast<int>(rng.below(2001)) - 1000) * 0.25f;
+        std::uint32_t code = bvh_detail::float_order_key(f);
+        if (bits < 32) {
+            code = static_cast<std::uint32_t>(rng.next()) & ((1u << bits) - 1);
+        }
+        keys[i] = (std::uint64_t{code} << 32) | i;
+    }
+    std::vector<std::uint64_t> expected(keys.begin(), keys.end());
+    std::stable_sort(expected.begin(), expected.end(),
+                     [](std::uint64_t x, std::uint64_t y) { return (x >> 32) < (y >> 32); });
+    bvh_detail::radix_sort_by_high(keys, bits);
+    CHECK(std::equal(keys.begin(), keys.end(), expected.begin(), expected.end()));
+}
+
 TEST_CASE("full-sweep SAH splits the root where the serial sweep's minimum is", "[accel][bvh]") {
     // 70000 primitives: the root's sweeps run in parallel blocks (65536 or more), each from the
     // unions of the blocks beside it. The split's cost must be the minimum over every split
     // between consecutive centres (ties by id) on every axis, computed here one slot at a time.
-    const std::vector<Bounds3f> boxes =
-        test::random_soup(test::SoupKind::triangles, 7, 70000).boxes;
+    // Shifted, the centres straddle 0 and every 50th box is flat at x = -0 or +0 (equal centres,
+    // so ordered by id): the sort's keys must order floats as floats compare.
+    const bool shifted = GENERATE(false, true);
+    CAPTURE(shifted);
+    std::vector<Bounds3f> boxes = test::random_soup(test::SoupKind::triangles, 7, 70000).boxes;
+    for (std::size_t i = 0; shifted && i < boxes.size(); ++i) {
+        const Vec3f shift{-0.5f, -0.5f, -0.5f};
+        boxes[i] = {boxes[i].lo + shift, boxes[i].hi + shift};
+        if (i % 50 == 0) {
+            boxes[i].lo.x = boxes[i].hi.x = i % 100 == 0 ? -0.0f : 0.0f;
+        }
+    }
     const Bvh bvh = build_with(boxes, "bvh:sweep");
     const BvhNode& root = bvh.nodes.at(0);
     REQUIRE_FALSE(root.is_leaf());

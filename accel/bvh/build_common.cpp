@@ -94,6 +94,45 @@ Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
     return {mid, axis};
 }
 
+void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) {
+    if (bits == 0) {
+        return;
+    }
+    const std::uint32_t passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
+    const std::uint32_t radix = 1u << digit_bits;
+    constexpr std::size_t block = std::size_t{1} << 16;
+    const std::size_t n = keys.size(), blocks = (n + block - 1) / block;
+    ScratchVector<std::uint64_t> out(n);
+    std::vector<std::uint32_t> offset(blocks * radix);
+    for (std::uint32_t shift = 32; shift < 32 + bits; shift += digit_bits) {
+        const auto digit = [shift, radix](std::uint64_t k) {
+            return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
+        };
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            std::uint32_t* count = &offset[k * radix];
+            std::fill(count, count + radix, 0u);
+            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+                ++count[digit(keys[i])];
+            }
+        });
+        std::uint32_t sum = 0;
+        for (std::uint32_t d = 0; d < radix; ++d) {
+            for (std::size_t k = 0; k < blocks; ++k) {
+                const std::uint32_t c = offset[k * radix + d];
+                offset[k * radix + d] = sum;
+                sum += c;
+            }
+        }
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+            std::uint32_t* next = &offset[k * radix];
+            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+                out[next[digit(keys[i])]++] = keys[i];
+            }
+        });
+        keys.swap(out);
+    }
+}
+
 namespace {
 
 /// What marks a slot no node was written to: an inner node's count (0) with axis 3, which

@@ -8,6 +8,7 @@
 #include "base/thread_arena.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -140,6 +141,19 @@ std::vector<std::uint32_t> block_starts(std::size_t n, const Pred& pred) {
     }
     return start;
 }
+
+/// An unsigned integer that orders as its float does (f not NaN; -0 and +0 the same key): the
+/// sign bit flipped for positives, every bit for negatives.
+inline std::uint32_t float_order_key(float f) {
+    const auto u = std::bit_cast<std::uint32_t>(f + 0.0f);  // -0 + 0 is +0
+    return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
+}
+
+/// Stable LSD radix sort of keys by their bits [32, 32 + bits) (a code above an id), in the
+/// fewest passes of at most 11 bits, in fixed blocks: per-block digit counts (parallel), offsets
+/// digit-major then block order, scatter (parallel). Keys made in id order and unique end in the
+/// order of sorting the whole keys, for any thread count.
+void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits);
 
 /// Stably partitions v[b, e) by in_first(x) (those first, each part in its old order) through
 /// scratch[b, e); returns the first slot of the second part. The stable order is unique, so the

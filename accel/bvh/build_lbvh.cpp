@@ -40,45 +40,6 @@ std::uint32_t quantize(float c, float lo, float scale, std::uint32_t cells) {
     return std::min(cells - 1, static_cast<std::uint32_t>(f));
 }
 
-/// Stable LSD radix sort of keys by their bits [32, 32 + bits) (the Morton code above the id), 10
-/// bits per pass, in fixed blocks: per-block digit counts (parallel), offsets digit-major then
-/// block order, scatter (parallel). The keys start in id order and are unique, so the result is
-/// the order of sorting the whole keys, for any thread count.
-void radix_sort_by_code(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) {
-    constexpr std::uint32_t digit_bits = 10, radix = 1u << digit_bits;
-    constexpr std::size_t block = std::size_t{1} << 16;
-    const std::size_t n = keys.size(), blocks = (n + block - 1) / block;
-    ScratchVector<std::uint64_t> out(n);
-    std::vector<std::uint32_t> offset(blocks * radix);
-    for (std::uint32_t shift = 32; shift < 32 + bits; shift += digit_bits) {
-        const auto digit = [shift](std::uint64_t k) {
-            return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
-        };
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            std::uint32_t* count = &offset[k * radix];
-            std::fill(count, count + radix, 0u);
-            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
-                ++count[digit(keys[i])];
-            }
-        });
-        std::uint32_t sum = 0;
-        for (std::uint32_t d = 0; d < radix; ++d) {
-            for (std::size_t k = 0; k < blocks; ++k) {
-                const std::uint32_t c = offset[k * radix + d];
-                offset[k * radix + d] = sum;
-                sum += c;
-            }
-        }
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            std::uint32_t* next = &offset[k * radix];
-            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
-                out[next[digit(keys[i])]++] = keys[i];
-            }
-        });
-        keys.swap(out);
-    }
-}
-
 Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const Bounds3f cb = td.centroid_bounds(0, static_cast<std::uint32_t>(td.ids.size()));
@@ -99,7 +60,7 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
                                    spread_bits(quantize(c.z, cb.lo.z, scale[2], cells));
         keys[i] = (static_cast<std::uint64_t>(code) << 32) | td.ids[i];
     });
-    radix_sort_by_code(keys, 3 * td.config.morton_bits);
+    bvh_detail::radix_sort_by_high(keys, 3 * td.config.morton_bits);
     ScratchVector<std::uint32_t> codes(keys.size());
     tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t i) {
         codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);

@@ -1,16 +1,17 @@
 // Full-sweep SAH (MacDonald & Booth 1990, "Heuristics for ray tracing using space subdivision"):
 // every split between consecutive centroids on every axis is evaluated with the SAH. The ids are
-// sorted once per axis (ties by id) and kept sorted by stable partitioning, so the build is
-// O(N log N) for the sort plus O(N) per tree level; subtrees in parallel with `threads`, and the
-// sweeps and partitions of large ranges (the top nodes) in parallel blocks. Ranges whose
-// centroids coincide split at the median by count.
+// sorted once per axis (ties by id; a parallel radix sort) and kept sorted by stable
+// partitioning, so the build is O(N) per tree level after the sorts; subtrees in parallel with
+// `threads`, and the sweeps and partitions of large ranges (the top nodes) in parallel blocks.
+// Ranges whose centroids coincide split at the median by count.
 
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <tbb/parallel_sort.h>
+#include <span>
+#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab {
@@ -26,10 +27,10 @@ struct AxisBest {
 };
 
 AxisBest sweep_axis(const bvh_detail::TopDown& t,
-                    const std::vector<std::uint32_t>& o,
+                    std::span<const std::uint32_t> o,
                     std::uint32_t b,
                     std::uint32_t e,
-                    std::vector<float>& right_area) {
+                    std::span<float> right_area) {
     // Slots [lo, hi) given the union of o[hi, e) (right) and of o[b, lo) (left): sweep from the
     // right, then from the left; the split before slot i puts o[b, i) left.
     const auto sweep = [&](std::uint32_t lo, std::uint32_t hi, Bounds3f right, Bounds3f left) {
@@ -85,22 +86,28 @@ AxisBest sweep_axis(const bvh_detail::TopDown& t,
 Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const std::size_t n_all = td.ids.size();
-    // order[a] holds the ids sorted by centre on axis a; every node's range [b, e) holds the same
-    // id set in all three arrays.
-    std::array<std::vector<std::uint32_t>, 3> order;
-    // One axis after the other, each sort itself parallel: three sorts side by side leave one of
-    // two threads idle for the third. The order is a strict total order, so the result is unique.
+    // order[a] holds the ids sorted by centre on axis a (ties by id); every node's range [b, e)
+    // holds the same id set in all three arrays. Sorted as 64-bit keys, the centre's bits made
+    // to order as unsigned integers above the id (ids are in increasing order in td.ids, so the
+    // stable radix sort breaks ties by id): the same strict total order as comparing centres.
+    std::array<ScratchVector<std::uint32_t>, 3> order;
+    ScratchVector<std::uint64_t> keys(n_all);
     for (std::uint32_t a = 0; a < 3; ++a) {
-        order[a] = td.ids;
-        tbb::parallel_sort(order[a].begin(), order[a].end(), [&](std::uint32_t x, std::uint32_t y) {
-            const float cx = td.center(x)[a], cy = td.center(y)[a];
-            return cx < cy || (cx == cy && x < y);
+        tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
+            keys[i] = (std::uint64_t{bvh_detail::float_order_key(td.center(td.ids[i])[a])} << 32) |
+                      td.ids[i];
+        });
+        bvh_detail::radix_sort_by_high(keys, 32);
+        order[a].resize(n_all);
+        tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
+            order[a][i] = static_cast<std::uint32_t>(keys[i]);
         });
     }
     // Scratch indexed by slot or id, so concurrent subtrees (disjoint ranges) never share it.
-    std::vector<float> right_area(n_all);
-    std::vector<char> goes_left(td.boxes.size(), 0);
-    std::vector<std::uint32_t> scratch(n_all);
+    // Uninitialised (ScratchVector): every entry is written before it is read.
+    ScratchVector<float> right_area(n_all);
+    ScratchVector<char> goes_left(td.boxes.size());
+    ScratchVector<std::uint32_t> scratch(n_all);
 
     auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
                      bool balance) -> std::optional<bvh_detail::Split> {
@@ -144,7 +151,7 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
             }
         }
         // Mark the left set, then stably partition the other two orders so they stay sorted.
-        const std::vector<std::uint32_t>& split_order = order[best_axis];
+        const ScratchVector<std::uint32_t>& split_order = order[best_axis];
         bvh_detail::for_range(n, [&](std::size_t lo, std::size_t hi) {
             for (std::size_t i = b + lo; i < b + hi; ++i) {
                 goes_left[split_order[i]] = i < best_mid ? 1 : 0;
