@@ -142,6 +142,63 @@ std::vector<std::uint32_t> block_starts(std::size_t n, const Pred& pred) {
     return start;
 }
 
+/// A node of another layout still to fill from node `source` of a source tree, at `depth`
+/// below the root (see convert_tree).
+struct ConvertItem {
+    std::uint32_t source, target, depth;
+};
+
+/// Converts a tree into another node layout (bvh:pair, bvh4, bvh8) depth first from its root
+/// (source node 0) into `nodes`, which starts with the root's node: expand(item, out, push)
+/// fills out[item.target] from item.source, appends a node to `out` for each inner child and
+/// push(ConvertItem) schedules it (the last pushed is expanded next). The levels above
+/// `task_depth` run serially; each subtree below them is converted by its own task into its own
+/// chunk (its root a copy of `blank` at chunk[0], inner child links as chunk indices), then
+/// chunk k's node 0 fills its placeholder and its node j >= 1 lands at base[k] + j - 1 (chunks
+/// appended in order), each node passed through relink(node, map) with map(j) that index. The
+/// split depends on the tree only, so any thread count gives the same nodes.
+template <class Nodes, class Expand, class Relink>
+void convert_tree(Nodes& nodes,
+                  const typename Nodes::value_type& blank,
+                  std::uint32_t task_depth,
+                  Expand&& expand,
+                  Relink&& relink) {
+    const auto run = [&](std::vector<ConvertItem> todo, Nodes& out,
+                         std::vector<ConvertItem>* pending) {
+        const auto push = [&](const ConvertItem& it) { todo.push_back(it); };
+        while (!todo.empty()) {
+            const ConvertItem it = todo.back();
+            todo.pop_back();
+            if (pending != nullptr && it.depth == task_depth) {
+                pending->push_back(it);
+            } else {
+                expand(it, out, push);
+            }
+        }
+    };
+    std::vector<ConvertItem> pending;
+    run({{0, 0, 0}}, nodes, &pending);
+    std::vector<Nodes> chunks(pending.size());
+    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
+        chunks[k].push_back(blank);
+        run({{pending[k].source, 0, 0}}, chunks[k], nullptr);
+    });
+    std::vector<std::size_t> base(pending.size() + 1, nodes.size());
+    for (std::size_t k = 0; k < pending.size(); ++k) {
+        base[k + 1] = base[k] + chunks[k].size() - 1;
+    }
+    nodes.resize(base.back());
+    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
+        const auto map = [&](std::uint32_t j) {
+            return static_cast<std::uint32_t>(base[k] + j - 1);
+        };
+        nodes[pending[k].target] = relink(chunks[k][0], map);
+        for (std::size_t j = 1; j < chunks[k].size(); ++j) {
+            nodes[base[k] + j - 1] = relink(chunks[k][j], map);
+        }
+    });
+}
+
 /// An unsigned integer that orders as its float does (f not NaN; -0 and +0 the same key): the
 /// sign bit flipped for positives, every bit for negatives.
 inline std::uint32_t float_order_key(float f) {

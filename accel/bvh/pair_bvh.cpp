@@ -5,12 +5,60 @@
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace rtlab {
 
-PairBvh PairBvh::convert(const Bvh& b, ChildOrder order) {
+namespace {
+
+/// Fills pair node nodes[it.target] from the children of inner node it.source of b, appending a
+/// node for each inner child and pushing them so that child 0's subtree comes first: siblings'
+/// nodes are adjacent (bvh_detail::convert_tree's expand).
+template <class Push>
+void expand(const Bvh& b,
+            const bvh_detail::ConvertItem& it,
+            LargeVector<PairNode>& nodes,
+            const Push& push,
+            ChildOrder order) {
+    const BvhNode& src = b.nodes[it.source];
+    // Child 0 the source's second child when that one's box is larger (ChildOrder::area).
+    const bool flip = order == ChildOrder::area && b.nodes[src.first + 1].bounds().surface_area() >
+                                                       b.nodes[src.first].bounds().surface_area();
+    PairNode n{};
+    bvh_detail::ConvertItem inner[2];
+    int inner_count = 0;
+    for (std::uint32_t c = 0; c < 2; ++c) {
+        const std::uint32_t from = src.first + (flip ? 1 - c : c);
+        const BvhNode& child = b.nodes[from];
+        n.x[c] = child.lo.x;
+        n.x[2 + c] = child.hi.x;
+        n.y[c] = child.lo.y;
+        n.y[2 + c] = child.hi.y;
+        n.z[c] = child.lo.z;
+        n.z[2 + c] = child.hi.z;
+        if (child.is_leaf()) {
+            n.child[c] = child.first;
+            n.count[c] = child.prim_count();
+        } else {
+            n.child[c] = static_cast<std::uint32_t>(nodes.size());
+            n.count[c] = 0;
+            nodes.emplace_back();
+            inner[inner_count++] = {from, n.child[c], it.depth + 1};
+        }
+    }
+    n.count[0] |= src.axis() << 30;
+    n.count[1] |= (flip ? 1u : 0u) << 30;
+    nodes[it.target] = n;
+    for (int k = inner_count - 1; k >= 0; --k) {
+        push(inner[k]);
+    }
+}
+
+}  // namespace
+
+PairBvh PairBvh::convert(Bvh b, ChildOrder order) {
     PairBvh p;
-    p.prim_ids = b.prim_ids;
+    p.prim_ids = std::move(b.prim_ids);  // the nodes below never read them
     p.prim_count = b.prim_count;
     p.unreferenced_count = b.unreferenced_count;
     p.config = b.config;
@@ -24,52 +72,23 @@ PairBvh PairBvh::convert(const Bvh& b, ChildOrder order) {
         p.root_count = root.prim_count();
         return p;
     }
-    // Depth-first: a node's pair node is allocated when its parent is filled, so siblings'
-    // nodes are adjacent and child 0's subtree precedes child 1's.
-    struct Item {
-        std::uint32_t source;  // inner node of b
-        std::uint32_t target;  // its pair node
-    };
+    // The top six levels serially (up to 64 subtrees below them), each subtree below them by
+    // its own task.
     p.nodes.reserve(b.nodes.size() / 2);
     p.nodes.emplace_back();
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const BvhNode& src = b.nodes[it.source];
-        // Child 0 the source's second child when that one's box is larger (ChildOrder::area).
-        const bool flip =
-            order == ChildOrder::area && b.nodes[src.first + 1].bounds().surface_area() >
-                                             b.nodes[src.first].bounds().surface_area();
-        PairNode n{};
-        Item inner[2];
-        int inner_count = 0;
-        for (std::uint32_t c = 0; c < 2; ++c) {
-            const std::uint32_t from = src.first + (flip ? 1 - c : c);
-            const BvhNode& child = b.nodes[from];
-            n.x[c] = child.lo.x;
-            n.x[2 + c] = child.hi.x;
-            n.y[c] = child.lo.y;
-            n.y[2 + c] = child.hi.y;
-            n.z[c] = child.lo.z;
-            n.z[2 + c] = child.hi.z;
-            if (child.is_leaf()) {
-                n.child[c] = child.first;
-                n.count[c] = child.prim_count();
-            } else {
-                n.child[c] = static_cast<std::uint32_t>(p.nodes.size());
-                n.count[c] = 0;
-                p.nodes.emplace_back();
-                inner[inner_count++] = {from, n.child[c]};
+    bvh_detail::convert_tree(
+        p.nodes, PairNode{}, 6,
+        [&](const bvh_detail::ConvertItem& it, LargeVector<PairNode>& out, const auto& push) {
+            expand(b, it, out, push, order);
+        },
+        [](PairNode n, const auto& map) {
+            for (int c = 0; c < 2; ++c) {
+                if (n.count_of(c) == 0) {
+                    n.child[c] = map(n.child[c]);
+                }
             }
-        }
-        n.count[0] |= src.axis() << 30;
-        n.count[1] |= (flip ? 1u : 0u) << 30;
-        p.nodes[it.target] = n;
-        for (int k = inner_count - 1; k >= 0; --k) {
-            stack.push_back(inner[k]);
-        }
-    }
+            return n;
+        });
     return p;
 }
 

@@ -70,8 +70,9 @@ struct PairBvh {
     /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
     bool soa_leaves = true;
 
-    /// The same tree as b, in pair nodes with their children in `order`.
-    static PairBvh convert(const Bvh& b, ChildOrder order = ChildOrder::area);
+    /// The same tree as b, in pair nodes with their children in `order`; b by value, so that a
+    /// build's temporary source gives up its prim_ids instead of having them copied.
+    static PairBvh convert(Bvh b, ChildOrder order = ChildOrder::area);
 
     /// Closest hit: offers hit_fn every primitive in a leaf whose box the shrinking window meets,
     /// the child on the ray's side of the split first. Invalid rays return false before any node.

@@ -131,13 +131,14 @@ private:
     }
 };
 
-/// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp).
+/// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp); taken by value so that a
+/// build's temporary source gives up its prim_ids instead of having them copied.
 template <unsigned N>
-WideBvh<N> collapse_bvh(const Bvh& binary, ChildOrder order = ChildOrder::area);
+WideBvh<N> collapse_bvh(Bvh binary, ChildOrder order = ChildOrder::area);
 
 /// The BVH8 of collapse_bvh<8>(binary) with its nodes quantised (qnodes; accel/bvh/
 /// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
-WideBvh<8> quantize_bvh8(const Bvh& binary, ChildOrder order = ChildOrder::area);
+WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order = ChildOrder::area);
 
 extern template struct WideBvh<4>;
 extern template struct WideBvh<8>;

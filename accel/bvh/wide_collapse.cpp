@@ -7,10 +7,10 @@
 // the binary build made them. The subtrees below the top levels are collapsed in parallel (TBB),
 // the same nodes for any threads.
 
+#include "accel/bvh/build_common.h"
 #include "accel/bvh/wide_bvh.h"
 
 #include <array>
-#include <tbb/parallel_for.h>
 #include <utility>
 #include <vector>
 
@@ -75,38 +75,24 @@ Kids<N> wide_children(const Bvh& bvh, std::uint32_t b, ChildOrder order) {
     return kids;
 }
 
-/// A wide node still to fill from the kids of binary node b, at wide depth `depth`.
-struct Item {
-    std::uint32_t b, wi, depth;
-};
-
-/// Fills wide nodes depth-first from `todo`, appending a fresh wide node to `nodes` for every
-/// inner kid; with `pending`, items at wide depth `stop` go there unfilled instead.
-template <unsigned N>
-void fill(const Bvh& bvh,
-          std::vector<Item> todo,
-          LargeVector<WideNode<N>>& nodes,
-          std::uint32_t stop,
-          std::vector<Item>* pending,
-          ChildOrder order) {
-    while (!todo.empty()) {
-        const Item it = todo.back();
-        todo.pop_back();
-        if (pending != nullptr && it.depth == stop) {
-            pending->push_back(it);
-            continue;
-        }
-        const Kids<N> kids = wide_children<N>(bvh, it.b, order);
-        for (unsigned i = 0; i < kids.size; ++i) {
-            const BvhNode& k = bvh.nodes[kids.node[i]];
-            if (k.is_leaf()) {
-                nodes[it.wi].set(i, k.bounds(), k.first, k.prim_count());
-            } else {
-                const auto child = static_cast<std::uint32_t>(nodes.size());
-                nodes.push_back(WideNode<N>::empty());
-                nodes[it.wi].set(i, k.bounds(), child, 0);
-                todo.push_back({kids.node[i], child, it.depth + 1});
-            }
+/// Fills wide node nodes[it.target] from the kids of binary node it.source, appending a fresh
+/// wide node to `nodes` for every inner kid and pushing it (bvh_detail::convert_tree's expand).
+template <unsigned N, class Push>
+void expand(const Bvh& bvh,
+            const bvh_detail::ConvertItem& it,
+            LargeVector<WideNode<N>>& nodes,
+            const Push& push,
+            ChildOrder order) {
+    const Kids<N> kids = wide_children<N>(bvh, it.source, order);
+    for (unsigned i = 0; i < kids.size; ++i) {
+        const BvhNode& k = bvh.nodes[kids.node[i]];
+        if (k.is_leaf()) {
+            nodes[it.target].set(i, k.bounds(), k.first, k.prim_count());
+        } else {
+            const auto child = static_cast<std::uint32_t>(nodes.size());
+            nodes.push_back(WideNode<N>::empty());
+            nodes[it.target].set(i, k.bounds(), child, 0);
+            push({kids.node[i], child, it.depth + 1});
         }
     }
 }
@@ -114,52 +100,36 @@ void fill(const Bvh& bvh,
 }  // namespace
 
 template <unsigned N>
-WideBvh<N> collapse_bvh(const Bvh& bvh, ChildOrder order) {
+WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order) {
     WideBvh<N> w;
-    w.prim_ids = bvh.prim_ids;
+    w.prim_ids = std::move(bvh.prim_ids);  // the nodes below never read them
     w.prim_count = bvh.prim_count;
     w.unreferenced_count = bvh.unreferenced_count;
     w.config = bvh.config;
     if (bvh.nodes.empty()) {
         return w;
     }
-    // The top levels serially, down to the wide depth with up to 64 nodes (N^depth); each subtree
-    // below is collapsed by its own task into its own chunk, whose node 0 is the subtree's root.
-    // The split depends on the tree only, so any thread count gives the same nodes.
+    // The top levels serially, down to the wide depth with up to 64 nodes (N^depth), each
+    // subtree below them by its own task.
     constexpr std::uint32_t task_depth = N == 8 ? 2 : 3;
     w.nodes.push_back(WideNode<N>::empty());
-    std::vector<Item> pending;
-    fill<N>(bvh, {{0, 0, 0}}, w.nodes, task_depth, &pending, order);
-    std::vector<LargeVector<WideNode<N>>> chunks(pending.size());
-    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
-        chunks[k].push_back(WideNode<N>::empty());
-        fill<N>(bvh, {{pending[k].b, 0, 0}}, chunks[k], 0, nullptr, order);
-    });
-    // Chunk k's node 0 fills its placeholder pending[k].wi, its node j >= 1 lands at
-    // base[k] + j - 1 (inner child links renumbered the same way).
-    std::vector<std::size_t> base(pending.size() + 1, w.nodes.size());
-    for (std::size_t k = 0; k < pending.size(); ++k) {
-        base[k + 1] = base[k] + chunks[k].size() - 1;
-    }
-    w.nodes.resize(base.back());
-    tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {
-        const auto placed = [&](WideNode<N> n) {
+    bvh_detail::convert_tree(
+        w.nodes, WideNode<N>::empty(), task_depth,
+        [&](const bvh_detail::ConvertItem& it, LargeVector<WideNode<N>>& out, const auto& push) {
+            expand<N>(bvh, it, out, push, order);
+        },
+        [](WideNode<N> n, const auto& map) {
             for (unsigned i = 0; i < N; ++i) {
                 if (n.occupied(i) && n.count[i] == 0) {
-                    n.child[i] = static_cast<std::uint32_t>(base[k] + n.child[i] - 1);
+                    n.child[i] = map(n.child[i]);
                 }
             }
             return n;
-        };
-        w.nodes[pending[k].wi] = placed(chunks[k][0]);
-        for (std::size_t j = 1; j < chunks[k].size(); ++j) {
-            w.nodes[base[k] + j - 1] = placed(chunks[k][j]);
-        }
-    });
+        });
     return w;
 }
 
-template WideBvh<4> collapse_bvh<4>(const Bvh&, ChildOrder);
-template WideBvh<8> collapse_bvh<8>(const Bvh&, ChildOrder);
+template WideBvh<4> collapse_bvh<4>(Bvh, ChildOrder);
+template WideBvh<8> collapse_bvh<8>(Bvh, ChildOrder);
 
 }  // namespace rtlab
