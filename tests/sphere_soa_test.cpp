@@ -9,6 +9,7 @@
 #include "accel/any_accel.h"
 #include "base/simd.h"
 #include "support/accel_fixtures.h"
+#include "support/ray_block.h"
 #include "trace/scene_tracer.h"
 #include "trace/wide_soa.h"
 
@@ -199,14 +200,20 @@ TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by sl
     CHECK(inside > 100);  // and leave spheres their origin is in
 }
 
-/// wide_sphere_trace against intersect_leaves/occluded_leaves with the leaf kernel as callback,
-/// and the closest hit against the scalar method on every sphere (brute force).
+/// wide_sphere_trace_block (all rays in one block) against intersect_leaves/occluded_leaves with
+/// the leaf kernel as callback, and the closest hit against the scalar method on every sphere
+/// (brute force), ray by ray.
 template <bool IsRobust, unsigned N>
 void check_inlined(const WideBvh<N>& bvh,
                    const std::vector<Prepared>& prims,
                    const std::vector<Rayf>& rays) {
     const SphereSoA soa = make_sphere_soa(prims, bvh.prim_ids);
-    for (const Rayf& ray : rays) {
+    test::KeepAllBlock<SlotHit> closest{rays};
+    test::KeepAllBlock<std::uint32_t> any{rays};
+    wide_sphere_trace_block<false, IsRobust>(bvh, soa, closest);
+    wide_sphere_trace_block<true, IsRobust>(bvh, soa, any);
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        const Rayf& ray = rays[k];
         const SphereRay<float> rd = M::precompute(ray);
         Rayf want_ray = ray;
         std::optional<SlotHit> want;
@@ -228,12 +235,13 @@ void check_inlined(const WideBvh<N>& bvh,
                 return want_any.has_value();
             },
             want_any_st);
-        Rayf got_ray = ray;
-        TraversalStats st, any_st;
-        const auto got = wide_sphere_trace<false, IsRobust>(bvh, soa, got_ray, rd, st);
-        const auto got_any = wide_sphere_trace<true, IsRobust>(bvh, soa, ray, rd, any_st);
+        const std::optional<SlotHit>& got = closest.found[k];
+        const std::optional<std::uint32_t>& got_any = any.found[k];
+        const TraversalStats& st = closest.counts[k];
+        const TraversalStats& any_st = any.counts[k];
+        const float got_tmax = got ? got->hit.t : ray.tmax;
         REQUIRE(got.has_value() == want.has_value());
-        REQUIRE(same_bits(got_ray.tmax, want_ray.tmax));
+        REQUIRE(same_bits(got_tmax, want_ray.tmax));
         if (want) {
             REQUIRE(got->slot == want->slot);
             REQUIRE(same_bits(got->hit.t, want->hit.t));
@@ -256,7 +264,7 @@ void check_inlined(const WideBvh<N>& bvh,
         }
         REQUIRE(got.has_value() == brute_hit);
         REQUIRE(got_any.has_value() == brute_hit);
-        REQUIRE(got_ray.tmax == brute_ray.tmax);  // -0 and +0 tie (huge directions)
+        REQUIRE(got_tmax == brute_ray.tmax);  // -0 and +0 tie (huge directions)
     }
 }
 

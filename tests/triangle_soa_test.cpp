@@ -8,6 +8,7 @@
 #include "accel/any_accel.h"
 #include "base/simd.h"
 #include "support/accel_fixtures.h"
+#include "support/ray_block.h"
 #include "trace/wide_soa.h"
 
 #include <catch2/catch.hpp>
@@ -141,13 +142,19 @@ TEST_CASE("triangle leaf kernels of every SIMD level equal the scalar methods bi
     check_kernel<Watertight<float>>(prims, rays);
 }
 
-/// wide_soa_trace against intersect_leaves/occluded_leaves with the leaf kernel as callback.
+/// wide_soa_trace_block (all rays in one block) against intersect_leaves/occluded_leaves with the
+/// leaf kernel as callback, ray by ray.
 template <class M, bool IsRobust, unsigned N>
 void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vector<Rayf>& rays) {
     constexpr bool is_wt = std::is_same_v<M, Watertight<float>>;
     const TriangleSoA soa = make_triangle_soa(soup.triangles, bvh.prim_ids,
                                               is_wt ? SoaLayout::vertices : SoaLayout::edges);
-    for (const Rayf& ray : rays) {
+    test::KeepAllBlock<SlotHit> closest{rays};
+    test::KeepAllBlock<std::uint32_t> any{rays};
+    wide_soa_trace_block<false, IsRobust, is_wt>(bvh, soa, closest);
+    wide_soa_trace_block<true, IsRobust, is_wt>(bvh, soa, any);
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        const Rayf& ray = rays[k];
         const RayDataOf<M> rd = precompute_ray<M>(ray);
         const WatertightRay<float>* wr = nullptr;
         if constexpr (is_wt) {
@@ -175,14 +182,14 @@ void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vec
                 return want_any.has_value();
             },
             want_any_st);
-        Rayf got_ray = ray;
-        TraversalStats st, any_st;
-        const auto got = wide_soa_trace<false, IsRobust, is_wt>(bvh, soa, got_ray, wr, st);
-        const auto got_any = wide_soa_trace<true, IsRobust, is_wt>(bvh, soa, ray, wr, any_st);
+        const std::optional<SlotHit>& got = closest.found[k];
+        const std::optional<std::uint32_t>& got_any = any.found[k];
+        const TraversalStats& st = closest.counts[k];
+        const TraversalStats& any_st = any.counts[k];
         REQUIRE(got.has_value() == want.has_value());
-        REQUIRE(same_bits(got_ray.tmax, want_ray.tmax));
         if (want) {
             REQUIRE(got->slot == want->slot);
+            REQUIRE(same_bits(got->hit.t, want_ray.tmax));
             REQUIRE(same_bits(got->hit.u, want->hit.u));
             REQUIRE(same_bits(got->hit.v, want->hit.v));
         }

@@ -100,16 +100,6 @@ bool uses_slot_prims(const PrimSet<M>& s, const A&) {
 template <class M>
 inline constexpr bool is_watertight = std::is_same_v<M, Watertight<float>>;
 
-// The watertight per-ray set-up the leaf kernels take: rd itself for watertight, else none.
-template <class M>
-const WatertightRay<float>* ray_data_ptr(const RayDataOf<M>& rd) {
-    if constexpr (is_watertight<M>) {
-        return &rd;
-    } else {
-        return nullptr;
-    }
-}
-
 // True when M's leaf kernel is the sphere one (SphereStable<float>).
 template <class M>
 inline constexpr bool is_sphere_soa = std::is_same_v<LeafSoa<M>, SphereSoA>;
@@ -146,44 +136,72 @@ std::optional<std::uint32_t> leaf_any(const LeafSoa<M>& q,
     }
 }
 
-// M's leaf kernel inlined into wide BVH traversal (trace/wide_soa.h): the closest hit's slot and
-// hit (IsAnyHit false) or any hit's slot.
-template <bool IsAnyHit, bool IsRobust, class M, unsigned N, class R, class Stats>
-SoaFound<IsAnyHit> wide_leaf_trace(
-    const WideBvh<N>& bvh, const LeafSoa<M>& q, R& ray, const RayDataOf<M>& rd, Stats& stats) {
+// Rays [begin, end) of one TBB range as the wide BVH block traversal takes them (trace/
+// wide_soa.h's RayBlock): the query reads ray i and keeps its answer, the sink's local counts.
+template <class Query, class Soa, class Local>
+struct QueryBlock {
+    const Query& query;
+    const Soa& soa;
+    Local& local;
+    std::size_t begin;
+    std::size_t end;
+
+    bool take(std::size_t i, Rayf& ray) const { return query.take(i, ray); }
+    template <class Found>
+    void put(std::size_t i, const Found& found) const {
+        query.put(i, soa, found);
+    }
+    auto& stats(std::size_t i) { return local[i]; }
+};
+
+// The rays [begin, end) of set s on wide BVH bvh with M's leaf kernel inlined into traversal
+// (trace/wide_soa.h), in one call.
+template <bool IsRobust, class Query, class M, unsigned N, class Local>
+void wide_leaf_block(const Query& query,
+                     const PrimSet<M>& s,
+                     const WideBvh<N>& bvh,
+                     std::size_t begin,
+                     std::size_t end,
+                     Local& local) {
+    QueryBlock<Query, LeafSoa<M>, Local> block{query, s.soa, local, begin, end};
     if constexpr (is_sphere_soa<M>) {
-        return wide_sphere_trace<IsAnyHit, IsRobust>(bvh, q, ray, rd, stats);
+        wide_sphere_trace_block<Query::is_any_hit, IsRobust>(bvh, s.soa, block);
     } else {
-        return wide_soa_trace<IsAnyHit, IsRobust, is_watertight<M>>(bvh, q, ray,
-                                                                    ray_data_ptr<M>(rd), stats);
+        wide_soa_trace_block<Query::is_any_hit, IsRobust, is_watertight<M>>(bvh, s.soa, block);
     }
 }
 
 // Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray
 // set-up runs once per ray and set, before traversal. Sets with slot-ordered leaf data test whole
-// leaves (ids looked up only for the reported hit); on wide BVHs the leaf kernel is inlined into
-// traversal (trace/wide_soa.h).
+// leaves (ids looked up only for the reported hit). On wide BVHs with a leaf kernel trace_batch
+// runs whole ranges through wide_leaf_block instead of trace(), with take() and put().
 struct ClosestQuery {
     std::span<const Rayf> rays;
     std::span<Hit> hits;
 
     template <class M>
     static constexpr bool accepts = IntersectionMethod<M>;
+    static constexpr bool is_any_hit = false;
+
+    // Ray i with its window shrunk to the hit so far.
+    bool take(std::size_t i, Rayf& ray) const {
+        ray = rays[i];
+        ray.tmax = std::min(ray.tmax, hits[i].t);
+        return true;
+    }
+    // The hit of leaf-data slot h.slot becomes ray i's.
+    template <class Soa>
+    void put(std::size_t i, const Soa& soa, const SlotHit& h) const {
+        hits[i] = {h.hit.t, h.hit.u, h.hit.v, soa.id(h.slot)};
+    }
 
     template <bool IsRobust, class M, class A, class Stats>
     void trace(const PrimSet<M>& s, const A& acc, std::size_t i, Stats& stats) const {
-        Rayf ray = rays[i];
-        ray.tmax = std::min(ray.tmax, hits[i].t);
+        Rayf ray;
+        take(i, ray);
         const RayDataOf<M> rd = precompute_ray<M>(ray);
         if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
-                if constexpr (is_wide_bvh<A>) {
-                    const auto h = wide_leaf_trace<false, IsRobust, M>(acc, s.soa, ray, rd, stats);
-                    if (h) {
-                        hits[i] = {h->hit.t, h->hit.u, h->hit.v, s.soa.id(h->slot)};
-                    }
-                    return;
-                }
                 SlotHit best{};
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
                     const auto h = leaf_closest<M>(s.soa, first, count, rr, rd);
@@ -193,7 +211,7 @@ struct ClosestQuery {
                     return h.has_value();
                 };
                 if (acc.template intersect_leaves<IsRobust>(ray, leaf, stats)) {
-                    hits[i] = {best.hit.t, best.hit.u, best.hit.v, s.soa.id(best.slot)};
+                    put(i, s.soa, best);
                 }
                 return;
             }
@@ -243,6 +261,21 @@ struct AnyHitQuery {
 
     template <class M>
     static constexpr bool accepts = true;
+    static constexpr bool is_any_hit = true;
+
+    // Ray i, unless an earlier set blocks it.
+    bool take(std::size_t i, Rayf& ray) const {
+        if (blocker[i] != invalid_id) {
+            return false;
+        }
+        ray = rays[i];
+        return true;
+    }
+    // Leaf-data slot `slot` blocks ray i.
+    template <class Soa>
+    void put(std::size_t i, const Soa& soa, std::uint32_t slot) const {
+        blocker[i] = soa.id(slot);
+    }
 
     template <bool IsRobust, class M, class A, class Stats>
     void trace(const PrimSet<M>& s, const A& acc, std::size_t i, Stats& stats) const {
@@ -252,14 +285,6 @@ struct AnyHitQuery {
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
         if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
-                if constexpr (is_wide_bvh<A>) {
-                    const auto h =
-                        wide_leaf_trace<true, IsRobust, M>(acc, s.soa, rays[i], rd, stats);
-                    if (h) {
-                        blocker[i] = s.soa.id(*h);
-                    }
-                    return;
-                }
                 std::uint32_t slot = 0;
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
                     const auto h = leaf_any<M>(s.soa, first, count, rr, rd);
@@ -267,7 +292,7 @@ struct AnyHitQuery {
                     return h.has_value();
                 };
                 if (acc.template occluded_leaves<IsRobust>(rays[i], leaf, stats)) {
-                    blocker[i] = s.soa.id(slot);
+                    put(i, s.soa, slot);
                 }
                 return;
             }
@@ -303,6 +328,26 @@ struct AnyHitQuery {
     }
 };
 
+// Rays [begin, end) of set s: in one block through the wide BVH traversal with the leaf kernel
+// inlined where that applies, else ray by ray.
+template <bool IsRobust, class Query, class M, class A, class Local>
+void trace_range(const Query& query,
+                 const PrimSet<M>& s,
+                 const A& acc,
+                 std::size_t begin,
+                 std::size_t end,
+                 Local& local) {
+    if constexpr (has_leaf_kernel<M> && is_wide_bvh<A>) {
+        if (uses_leaf_kernel(s, acc)) {
+            wide_leaf_block<IsRobust>(query, s, acc, begin, end, local);
+            return;
+        }
+    }
+    for (std::size_t i = begin; i != end; ++i) {
+        query.template trace<IsRobust>(s, acc, i, local[i]);
+    }
+}
+
 // The one batch loop: every set in order (its method and structure static), its rays in
 // parallel. Each ray is independent, so results do not depend on the thread count.
 template <class Query, class Sink>
@@ -317,10 +362,8 @@ void trace_batch(const std::vector<AnyPrimSet>& sets, bool robust, const Query& 
                 tbb::parallel_for(tbb::blocked_range<std::size_t>(0, query.rays.size(), grain),
                                   [&](const tbb::blocked_range<std::size_t>& r) {
                                       auto local = sink.local();
-                                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                          query.template trace<decltype(is_robust)::value>(
-                                              s, acc, i, local[i]);
-                                      }
+                                      trace_range<decltype(is_robust)::value>(
+                                          query, s, acc, r.begin(), r.end(), local);
                                   });
             }
         });

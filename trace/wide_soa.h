@@ -1,14 +1,17 @@
 #pragma once
 // Wide BVHs over TriangleSoA or SphereSoA leaf data with the leaf kernel inlined into traversal:
 // one function per SIMD level (trace/wide_soa.inc) holds the node tests and the leaf tests of that
-// level, so a leaf costs no call and no level look-up. The answers are those of
-// WideBvh::intersect_leaves / occluded_leaves with soa_closest_* / soa_any_* (sphere_soa_closest /
-// sphere_soa_any) as the leaf callback (same order of visits, same counts).
+// level, so a leaf costs no call and no level look-up; it traces a whole block of rays, so the
+// level, the node layout and the call are chosen once per block, not per ray. The answers are
+// those of WideBvh::intersect_leaves / occluded_leaves with soa_closest_* / soa_any_*
+// (sphere_soa_closest / sphere_soa_any) as the leaf callback (same order of visits, same counts).
 
 #include "accel/bvh/wide_bvh.h"
 #include "trace/sphere_soa_kernels.h"
 #include "trace/triangle_soa_kernels.h"
 
+#include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <type_traits>
@@ -45,43 +48,77 @@ inline constexpr bool is_wide_bvh = false;
 template <unsigned N>
 inline constexpr bool is_wide_bvh<WideBvh<N>> = true;
 
-/// Closest hit (IsAnyHit false, R is Rayf: the nearest slot and its hit, ray.tmax shrunk to it)
-/// or any hit (R is const Rayf: the first blocking slot found) through bvh with leaf data q in its
-/// slot order: Möller–Trumbore for the edges layout, watertight with the ray's set-up *wr for the
-/// vertices layout.
-template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, class R, StatsSink S>
-SoaFound<IsAnyHit> wide_soa_trace(
-    const WideBvh<N>& bvh, const TriangleSoA& q, R& ray, const WatertightRay<float>* wr, S& stats) {
-    return bvh.visit(ray, stats, SoaFound<IsAnyHit>{}, [&](const auto& view) {
+/// A block of rays for wide_soa_trace_block / wide_sphere_trace_block: rays [begin, end) of a
+/// batch; take(i, ray) sets ray i's ray and window (false: skip it), put(i, found) takes its
+/// answer (the closest hit's SlotHit, or any hit's slot; called only when there is one) and
+/// stats(i) is the StatsSink its traversal counts into.
+template <class B>
+concept RayBlock = requires(B& b, std::size_t i, Rayf& ray) {
+    { b.begin } -> std::convertible_to<std::size_t>;
+    { b.end } -> std::convertible_to<std::size_t>;
+    { b.take(i, ray) } -> std::same_as<bool>;
+    b.stats(i);
+};
+
+/// What a traversal of an empty structure does for a block: counts each valid ray it takes
+/// (WideBvh::visit's count), finds nothing.
+template <RayBlock B>
+void count_rays_of_empty(B& block) {
+    for (std::size_t i = block.begin; i != block.end; ++i) {
+        Rayf ray;
+        if (block.take(i, ray) && is_valid(ray)) {
+            block.stats(i).count_ray();
+        }
+    }
+}
+
+/// Closest hit (IsAnyHit false: block.put(i, SlotHit), the nearest slot and its hit) or any hit
+/// (block.put(i, slot), the first blocking slot found) of every ray of the block through bvh with
+/// leaf data q in its slot order: Möller–Trumbore for the edges layout, watertight for the
+/// vertices layout (its per-ray set-up made here). The SIMD level and node layout are chosen once
+/// per block. The answers and counts are those of WideBvh::intersect_leaves / occluded_leaves
+/// with soa_closest_* / soa_any_* as the leaf callback.
+template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, RayBlock B>
+void wide_soa_trace_block(const WideBvh<N>& bvh, const TriangleSoA& q, B& block) {
+    if (bvh.nodes.empty()) {
+        count_rays_of_empty(block);
+        return;
+    }
+    bvh.visit_view([&](const auto& view) {
         switch (simd_level()) {
         case SimdLevel::avx512:
-            return simd_avx512::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr,
-                                                                                 stats);
+            simd_avx512::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            return;
         case SimdLevel::avx2:
-            return simd_avx2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr,
-                                                                               stats);
+            simd_avx2::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            return;
         case SimdLevel::sse2:
             break;
         }
-        return simd_sse2::wide_soa_trace<IsAnyHit, IsRobust, IsWatertight>(view, q, ray, wr, stats);
+        simd_sse2::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
     });
 }
 
-/// As wide_soa_trace for spheres: SphereStable<float> with the ray's set-up rd on leaf data q in
-/// bvh's slot order.
-template <bool IsAnyHit, bool IsRobust, unsigned N, class R, StatsSink S>
-SoaFound<IsAnyHit> wide_sphere_trace(
-    const WideBvh<N>& bvh, const SphereSoA& q, R& ray, const SphereRay<float>& rd, S& stats) {
-    return bvh.visit(ray, stats, SoaFound<IsAnyHit>{}, [&](const auto& view) {
+/// As wide_soa_trace_block for spheres: SphereStable<float> (its per-ray set-up made here) on
+/// leaf data q in bvh's slot order.
+template <bool IsAnyHit, bool IsRobust, unsigned N, RayBlock B>
+void wide_sphere_trace_block(const WideBvh<N>& bvh, const SphereSoA& q, B& block) {
+    if (bvh.nodes.empty()) {
+        count_rays_of_empty(block);
+        return;
+    }
+    bvh.visit_view([&](const auto& view) {
         switch (simd_level()) {
         case SimdLevel::avx512:
-            return simd_avx512::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+            simd_avx512::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
+            return;
         case SimdLevel::avx2:
-            return simd_avx2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+            simd_avx2::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
+            return;
         case SimdLevel::sse2:
             break;
         }
-        return simd_sse2::wide_sphere_trace<IsAnyHit, IsRobust>(view, q, ray, rd, stats);
+        simd_sse2::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
     });
 }
 

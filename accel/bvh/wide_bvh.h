@@ -96,6 +96,13 @@ struct WideBvh {
         if (nodes.empty()) {
             return none;
         }
+        return visit_view(f);
+    }
+
+    /// f(view) with what traversal reads (the quantised nodes when there are any), for callers
+    /// that check their rays themselves (a block of rays); nodes must not be empty.
+    template <class F>
+    decltype(auto) visit_view(F&& f) const {
         if constexpr (N == 8) {
             if (!qnodes.empty()) {
                 return f(view_of(qnodes));
