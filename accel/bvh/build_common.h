@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -149,12 +150,12 @@ struct ConvertItem {
 };
 
 /// Converts a tree into another node layout (bvh:pair, bvh4, bvh8) depth first from its root
-/// (source node 0) into `nodes`, which starts with the root's node: expand(item, out, push)
-/// fills out[item.target] from item.source, appends a node to `out` for each inner child and
-/// push(ConvertItem) schedules it (the last pushed is expanded next). The levels above
-/// `task_depth` run serially; each subtree below them is converted by its own task into its own
-/// chunk (its root a copy of `blank` at chunk[0], inner child links as chunk indices), then
-/// chunk k's node 0 fills its placeholder and its node j >= 1 lands at base[k] + j - 1 (chunks
+/// (source node 0) into the empty `nodes`, the root's node (a copy of `blank`) at nodes[0]:
+/// expand(item, out, push) fills out[item.target] from item.source, appends a node to `out` for
+/// each inner child and push(ConvertItem) schedules it (the last pushed is expanded next). The
+/// levels above `task_depth` run serially; each subtree below them is converted by its own task
+/// into its own chunk (its root a copy of `blank` at chunk[0], inner child links as chunk indices),
+/// then chunk k's node 0 fills its placeholder and its node j >= 1 lands at base[k] + j - 1 (chunks
 /// appended in order), each node passed through relink(node, map) with map(j) that index. The
 /// split depends on the tree only, so any thread count gives the same nodes.
 template <class Nodes, class Expand, class Relink>
@@ -177,6 +178,8 @@ void convert_tree(Nodes& nodes,
         }
     };
     std::vector<ConvertItem> pending;
+    assert(nodes.empty());
+    nodes.push_back(blank);
     run({{0, 0, 0}}, nodes, &pending);
     std::vector<Nodes> chunks(pending.size());
     tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t k) {

@@ -4,7 +4,6 @@
 
 #include "accel/bvh/build_common.h"
 
-#include <algorithm>
 #include <utility>
 
 namespace rtlab {
@@ -75,7 +74,6 @@ PairBvh PairBvh::convert(Bvh b, ChildOrder order) {
     // The top six levels serially (up to 64 subtrees below them), each subtree below them by
     // its own task.
     p.nodes.reserve(b.nodes.size() / 2);
-    p.nodes.emplace_back();
     bvh_detail::convert_tree(
         p.nodes, PairNode{}, 6,
         [&](const bvh_detail::ConvertItem& it, LargeVector<PairNode>& out, const auto& push) {

@@ -112,7 +112,6 @@ WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order) {
     // The top levels serially, down to the wide depth with up to 64 nodes (N^depth), each
     // subtree below them by its own task.
     constexpr std::uint32_t task_depth = N == 8 ? 2 : 3;
-    w.nodes.push_back(WideNode<N>::empty());
     bvh_detail::convert_tree(
         w.nodes, WideNode<N>::empty(), task_depth,
         [&](const bvh_detail::ConvertItem& it, LargeVector<WideNode<N>>& out, const auto& push) {
