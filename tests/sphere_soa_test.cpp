@@ -200,9 +200,9 @@ TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by sl
     CHECK(inside > 100);  // and leave spheres their origin is in
 }
 
-/// wide_sphere_trace_block (all rays in one block) against intersect_leaves/occluded_leaves with
-/// the leaf kernel as callback, and the closest hit against the scalar method on every sphere
-/// (brute force), ray by ray.
+/// wide_leaf_trace_block on spheres (all rays in one block) against
+/// intersect_leaves/occluded_leaves with the leaf kernel as callback, and the closest hit against
+/// the scalar method on every sphere (brute force), ray by ray.
 template <bool IsRobust, unsigned N>
 void check_inlined(const WideBvh<N>& bvh,
                    const std::vector<Prepared>& prims,
@@ -210,8 +210,8 @@ void check_inlined(const WideBvh<N>& bvh,
     const SphereSoA soa = make_sphere_soa(prims, bvh.prim_ids);
     test::KeepAllBlock<SlotHit> closest{rays};
     test::KeepAllBlock<std::uint32_t> any{rays};
-    wide_sphere_trace_block<false, IsRobust>(bvh, soa, closest);
-    wide_sphere_trace_block<true, IsRobust>(bvh, soa, any);
+    wide_leaf_trace_block<false, IsRobust, false>(bvh, soa, closest);
+    wide_leaf_trace_block<true, IsRobust, false>(bvh, soa, any);
     for (std::size_t k = 0; k < rays.size(); ++k) {
         const Rayf& ray = rays[k];
         const SphereRay<float> rd = M::precompute(ray);

@@ -142,8 +142,8 @@ TEST_CASE("triangle leaf kernels of every SIMD level equal the scalar methods bi
     check_kernel<Watertight<float>>(prims, rays);
 }
 
-/// wide_soa_trace_block (all rays in one block) against intersect_leaves/occluded_leaves with the
-/// leaf kernel as callback, ray by ray.
+/// wide_leaf_trace_block on triangles (all rays in one block) against
+/// intersect_leaves/occluded_leaves with the leaf kernel as callback, ray by ray.
 template <class M, bool IsRobust, unsigned N>
 void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vector<Rayf>& rays) {
     constexpr bool is_wt = std::is_same_v<M, Watertight<float>>;
@@ -151,8 +151,8 @@ void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vec
                                               is_wt ? SoaLayout::vertices : SoaLayout::edges);
     test::KeepAllBlock<SlotHit> closest{rays};
     test::KeepAllBlock<std::uint32_t> any{rays};
-    wide_soa_trace_block<false, IsRobust, is_wt>(bvh, soa, closest);
-    wide_soa_trace_block<true, IsRobust, is_wt>(bvh, soa, any);
+    wide_leaf_trace_block<false, IsRobust, is_wt>(bvh, soa, closest);
+    wide_leaf_trace_block<true, IsRobust, is_wt>(bvh, soa, any);
     for (std::size_t k = 0; k < rays.size(); ++k) {
         const Rayf& ray = rays[k];
         const RayDataOf<M> rd = precompute_ray<M>(ray);

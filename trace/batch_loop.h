@@ -164,11 +164,7 @@ void wide_leaf_block(const Query& query,
                      std::size_t end,
                      Local& local) {
     QueryBlock<Query, LeafSoa<M>, Local> block{query, s.soa, local, begin, end};
-    if constexpr (is_sphere_soa<M>) {
-        wide_sphere_trace_block<Query::is_any_hit, IsRobust>(bvh, s.soa, block);
-    } else {
-        wide_soa_trace_block<Query::is_any_hit, IsRobust, is_watertight<M>>(bvh, s.soa, block);
-    }
+    wide_leaf_trace_block<Query::is_any_hit, IsRobust, is_watertight<M>>(bvh, s.soa, block);
 }
 
 // Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray

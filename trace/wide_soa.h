@@ -48,7 +48,7 @@ inline constexpr bool is_wide_bvh = false;
 template <unsigned N>
 inline constexpr bool is_wide_bvh<WideBvh<N>> = true;
 
-/// A block of rays for wide_soa_trace_block / wide_sphere_trace_block: rays [begin, end) of a
+/// A block of rays for wide_leaf_trace_block: rays [begin, end) of a
 /// batch; take(i, ray) sets ray i's ray and window (false: skip it), put(i, found) takes its
 /// answer (the closest hit's SlotHit, or any hit's slot; called only when there is one) and
 /// stats(i) is the StatsSink its traversal counts into.
@@ -74,12 +74,14 @@ void count_rays_of_empty(B& block) {
 
 /// Closest hit (IsAnyHit false: block.put(i, SlotHit), the nearest slot and its hit) or any hit
 /// (block.put(i, slot), the first blocking slot found) of every ray of the block through bvh with
-/// leaf data q in its slot order: Möller–Trumbore for the edges layout, watertight for the
-/// vertices layout (its per-ray set-up made here). The SIMD level and node layout are chosen once
-/// per block. The answers and counts are those of WideBvh::intersect_leaves / occluded_leaves
-/// with soa_closest_* / soa_any_* as the leaf callback.
-template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, RayBlock B>
-void wide_soa_trace_block(const WideBvh<N>& bvh, const TriangleSoA& q, B& block) {
+/// leaf data q in its slot order (TriangleSoA: Möller–Trumbore for the edges layout, watertight
+/// with IsWatertight for the vertices layout; SphereSoA: SphereStable<float>), the method's
+/// per-ray set-up made per ray. The SIMD level and node layout are chosen once per block. The
+/// answers and counts are those of WideBvh::intersect_leaves / occluded_leaves with
+/// soa_closest_* / soa_any_* (sphere_soa_closest / sphere_soa_any) as the leaf callback.
+template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, class Q, RayBlock B>
+requires std::same_as<Q, TriangleSoA> || std::same_as<Q, SphereSoA>
+void wide_leaf_trace_block(const WideBvh<N>& bvh, const Q& q, B& block) {
     if (bvh.nodes.empty()) {
         count_rays_of_empty(block);
         return;
@@ -87,38 +89,15 @@ void wide_soa_trace_block(const WideBvh<N>& bvh, const TriangleSoA& q, B& block)
     bvh.visit_view([&](const auto& view) {
         switch (simd_level()) {
         case SimdLevel::avx512:
-            simd_avx512::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            simd_avx512::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
             return;
         case SimdLevel::avx2:
-            simd_avx2::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            simd_avx2::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
             return;
         case SimdLevel::sse2:
             break;
         }
-        simd_sse2::wide_soa_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
-    });
-}
-
-/// As wide_soa_trace_block for spheres: SphereStable<float> (its per-ray set-up made here) on
-/// leaf data q in bvh's slot order.
-template <bool IsAnyHit, bool IsRobust, unsigned N, RayBlock B>
-void wide_sphere_trace_block(const WideBvh<N>& bvh, const SphereSoA& q, B& block) {
-    if (bvh.nodes.empty()) {
-        count_rays_of_empty(block);
-        return;
-    }
-    bvh.visit_view([&](const auto& view) {
-        switch (simd_level()) {
-        case SimdLevel::avx512:
-            simd_avx512::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
-            return;
-        case SimdLevel::avx2:
-            simd_avx2::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
-            return;
-        case SimdLevel::sse2:
-            break;
-        }
-        simd_sse2::wide_sphere_trace_block<IsAnyHit, IsRobust>(view, q, block);
+        simd_sse2::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
     });
 }
 
