@@ -16,6 +16,7 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
 Bvh build_bvh_sweep_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 Bvh build_bvh_lbvh(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 Bvh build_bvh_binned_parallel(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
+Bvh build_bvh_sbvh(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads);
 KdTree build_kdtree_sah(const BuildInput& in, const KdTree::Config& cfg);
 KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg);
 Grid build_grid_uniform(const BuildInput& in, const GridConfig& cfg, std::uint32_t threads);
@@ -69,7 +70,7 @@ const ParamSpec threads =
                   "TBB threads of the build (0: all allowed); the tree is the same for any");
 const ParamSpec from = choice_param("from",
                                     0,
-                                    {"pbinned", "binned", "sweep", "lbvh", "median"},
+                                    {"pbinned", "binned", "sweep", "lbvh", "median", "sbvh"},
                                     "the binary BVH builder whose tree is converted");
 const ParamSpec kd_ct = real_param("ct",
                                    static_cast<double>(kd_default.traversal_cost),
@@ -194,8 +195,10 @@ Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
         return build_bvh_sweep_sah(in, c, t);
     case 3:
         return build_bvh_lbvh(in, c, t);
-    default:
+    case 4:
         return build_bvh_median(in, c, t);
+    default:
+        return build_bvh_sbvh(in, c, t);
     }
 }
 
@@ -319,6 +322,11 @@ const AccelEntry registry_rows[] = {
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
      {sah_max_leaf, sah_ct, bvh_ci, sah_block, threads},
      &threaded_row<build_bvh_sweep_sah, bvh_config>},
+    {"bvh:sbvh",
+     "binary BVH, binned SAH with spatial splits (Stich et al. 2009; 2 bins or more): a primitive "
+     "may be cut into several leaves; parallel with TBB, deterministic",
+     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
+     &threaded_row<build_bvh_sbvh, bvh_config>},
     {"bvh:lbvh",
      "binary BVH, Morton-code radix tree (Karras 2012)",
      {max_leaf, morton_bits, threads},

@@ -59,8 +59,13 @@ void walk_from_root(const F& visit) {
 }
 
 /// The sizes every BVH layout's info() reports: node count, bytes, bytes per input primitive and
-/// one reference per primitive.
-AccelInfo size_info(std::size_t nodes, std::size_t bytes, std::uint32_t prim_count);
+/// references (prim_ids slots other than padding) per referenced primitive (1 unless spatial
+/// splits put a primitive in several leaves).
+AccelInfo size_info(std::size_t nodes,
+                    std::size_t bytes,
+                    std::uint32_t prim_count,
+                    std::span<const std::uint32_t> prim_ids,
+                    std::uint32_t unreferenced_count);
 
 /// The SAH cost of the info() walks, sum(inner A * Ct) + sum(leaf A * n * Ci) over A(root) with
 /// the build's Ct and Ci, with the leaf count and depth beside it. Terms are summed in the order

@@ -15,7 +15,7 @@ namespace rtlab {
 AccelInfo Bvh::info() const {
     AccelInfo i = bvh_detail::size_info(
         nodes.size(), nodes.size() * sizeof(BvhNode) + prim_ids.size() * sizeof(std::uint32_t),
-        prim_count);
+        prim_count, prim_ids, unreferenced_count);
     if (nodes.empty()) {
         return i;
     }
@@ -38,7 +38,7 @@ std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
                                        std::uint32_t prim_count,
                                        std::uint32_t unreferenced_count) {
     std::vector<char> seen(prim_count, 0);
-    std::size_t ids = 0;  // slots other than padding
+    std::size_t ids = 0;  // distinct ids
     for (const std::uint32_t id : prim_ids) {
         if (id == padding_slot) {
             continue;
@@ -46,14 +46,11 @@ std::string bvh_detail::check_prim_ids(std::span<const std::uint32_t> prim_ids,
         if (id >= prim_count) {
             return "primitive id " + std::to_string(id) + " out of range";
         }
-        if (seen[id]) {
-            return "primitive " + std::to_string(id) + " referenced twice";
-        }
+        ids += seen[id] ? 0 : 1;
         seen[id] = 1;
-        ++ids;
     }
     if (ids + unreferenced_count != prim_count) {
-        return "prim_ids holds " + std::to_string(ids) + " ids, expected " +
+        return "prim_ids holds " + std::to_string(ids) + " distinct ids, expected " +
                std::to_string(prim_count - unreferenced_count);
     }
     return {};
@@ -74,6 +71,11 @@ std::string bvh_detail::use_leaf_slots(std::span<const std::uint32_t> prim_ids,
             return "padding slot " + std::to_string(s) + " in a leaf";
         }
         used[s] = 1;
+    }
+    std::vector<std::uint32_t> ids(prim_ids.begin() + first, prim_ids.begin() + first + count);
+    std::sort(ids.begin(), ids.end());
+    if (const auto twice = std::adjacent_find(ids.begin(), ids.end()); twice != ids.end()) {
+        return "primitive " + std::to_string(*twice) + " twice in one leaf";
     }
     return {};
 }
@@ -140,13 +142,21 @@ Bvh align_leaf_slots(Bvh bvh, std::uint32_t k) {
     return bvh;
 }
 
-AccelInfo bvh_detail::size_info(std::size_t nodes, std::size_t bytes, std::uint32_t prim_count) {
+AccelInfo bvh_detail::size_info(std::size_t nodes,
+                                std::size_t bytes,
+                                std::uint32_t prim_count,
+                                std::span<const std::uint32_t> prim_ids,
+                                std::uint32_t unreferenced_count) {
     AccelInfo i;
     i.nodes = nodes;
     i.bytes = bytes;
     i.bytes_per_prim =
         prim_count == 0 ? 0.0 : static_cast<double>(bytes) / static_cast<double>(prim_count);
-    i.refs_per_prim = prim_count == 0 ? 0.0 : 1.0;
+    const auto refs =
+        static_cast<double>(prim_ids.size() - static_cast<std::size_t>(std::count(
+                                                  prim_ids.begin(), prim_ids.end(), padding_slot)));
+    const std::uint32_t referenced = prim_count - unreferenced_count;
+    i.refs_per_prim = referenced == 0 ? 0.0 : refs / static_cast<double>(referenced);
     return i;
 }
 

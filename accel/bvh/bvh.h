@@ -62,10 +62,10 @@ struct Bvh {
     /// root area A(root) (Ci * N when the root has zero area), with the Config's Ct and Ci.
     AccelInfo info() const;
 
-    /// Empty when every invariant holds (each usable primitive referenced exactly once, ids
-    /// unique and < prim_count, children inside their parent, non-empty leaves of at most
-    /// max_leaf_size primitives covering every slot but padding slots, depth <= 64, every node
-    /// reachable once); else the first violation.
+    /// Empty when every invariant holds (each usable primitive referenced, at most once per
+    /// leaf: bvh:sbvh may put one in several leaves; ids < prim_count, children inside their
+    /// parent, non-empty leaves of at most max_leaf_size primitives covering every slot but
+    /// padding slots, depth <= 64, every node reachable once); else the first violation.
     std::string validate() const;
 
     friend bool operator==(const Bvh&, const Bvh&) = default;

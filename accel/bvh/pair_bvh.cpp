@@ -93,7 +93,7 @@ PairBvh PairBvh::convert(Bvh b, ChildOrder order) {
 AccelInfo PairBvh::info() const {
     AccelInfo i = bvh_detail::size_info(
         nodes.size(), nodes.size() * sizeof(PairNode) + prim_ids.size() * sizeof(std::uint32_t),
-        prim_count);
+        prim_count, prim_ids, unreferenced_count);
     if (prim_ids.empty()) {
         return i;
     }

@@ -27,7 +27,7 @@ AccelInfo WideBvh<N>::info() const {
                                            nodes.size() * sizeof(WideNode<N>) +
                                                qnodes.size() * sizeof(QWideNode8) +
                                                prim_ids.size() * sizeof(std::uint32_t),
-                                           prim_count);
+                                           prim_count, prim_ids, unreferenced_count);
     if (nodes.empty()) {
         return info;
     }
