@@ -41,9 +41,9 @@ BuildInput clipped_input(const test::Soup& s) {
             }};
 }
 
-/// Checks that every sample point of every triangle (vertices, edge midpoints, interior points)
-/// lies in the box of some leaf that lists the triangle.
-void check_parts_cover(const Bvh& bvh, const test::Soup& s) {
+/// Checks that every sample point of every triangle (vertices, edge midpoints and `interior`
+/// random interior points) lies in the box of some leaf that lists the triangle.
+void check_parts_cover(const Bvh& bvh, const test::Soup& s, int interior = 16) {
     std::vector<std::vector<Bounds3f>> leaf_boxes(s.boxes.size());
     for (const BvhNode& n : bvh.nodes) {
         if (n.is_leaf()) {
@@ -55,9 +55,14 @@ void check_parts_cover(const Bvh& bvh, const test::Soup& s) {
     test::Rng rng(3);
     for (std::uint32_t id = 0; id < s.triangles.size(); ++id) {
         const auto& t = s.triangles[id];
-        std::vector<Vec3f> points{
-            t.p0, t.p1, t.p2, (t.p0 + t.p1) * 0.5f, (t.p1 + t.p2) * 0.5f, (t.p2 + t.p0) * 0.5f};
-        for (int k = 0; k < 16; ++k) {
+        // Midpoints as halves added: no overflow at coordinates near the float range's ends.
+        std::vector<Vec3f> points{t.p0,
+                                  t.p1,
+                                  t.p2,
+                                  t.p0 * 0.5f + t.p1 * 0.5f,
+                                  t.p1 * 0.5f + t.p2 * 0.5f,
+                                  t.p2 * 0.5f + t.p0 * 0.5f};
+        for (int k = 0; k < interior; ++k) {
             float u = rng.uniform(), v = rng.uniform();
             if (u + v > 1) {
                 u = 1 - u;
@@ -88,6 +93,23 @@ TEST_CASE("spatial splits cut slivers into parts that still cover them", "[accel
     CHECK(si.sah_cost < bi.sah_cost);  // and it paid by the SAH's own measure
     CHECK(sbvh == std::get<Bvh>(build_accel("bvh:sbvh,max_leaf=4,ct=1", in)));  // deterministic
     check_parts_cover(sbvh, soup);
+}
+
+TEST_CASE("spatial splits stay off node boxes wider than the float range", "[accel][bvh][sbvh]") {
+    // Slivers from -3e38 to 3e38 on x: the root's extent overflows to infinity (no spatial bins
+    // on that axis), and the tree must still be valid and cover every triangle.
+    test::Soup soup;
+    soup.kind = test::SoupKind::triangles;
+    test::Rng rng(4);
+    for (int i = 0; i < 200; ++i) {
+        const float y = rng.uniform(0, 1), z = rng.uniform(0, 1);
+        const Trianglef t{{-3e38f, y, z}, {3e38f, y + 0.01f, z}, {3e38f, y, z + 0.01f}};
+        soup.triangles.push_back(MollerTrumbore<float>::prepare(t));
+        soup.boxes.push_back(MollerTrumbore<float>::bounds(soup.triangles.back()));
+    }
+    const Bvh bvh = std::get<Bvh>(build_accel("bvh:sbvh,max_leaf=2", clipped_input(soup)));
+    REQUIRE(bvh.validate().empty());
+    check_parts_cover(bvh, soup, 0);  // interior points would overflow
 }
 
 TEST_CASE("spatial-split trees are the same for any thread count", "[accel][bvh][sbvh]") {

@@ -259,6 +259,12 @@ private:
         return std::min(bins_ - 1, static_cast<std::uint32_t>(std::min(f, float(bins_ - 1))));
     }
 
+    /// True when axis a of the node box can hold spatial bins: a positive, finite extent.
+    static bool spatial_axis(const Bounds3f& node, std::uint32_t a) {
+        const float extent = node.hi[a] - node.lo[a];
+        return extent > 0.0f && extent <= std::numeric_limits<float>::max();
+    }
+
     /// Plane k of axis a's spatial bins over the node box (k = bins_: the box's top).
     float plane(const Bounds3f& node, std::uint32_t a, std::uint32_t k) const {
         if (k == bins_) {
@@ -314,7 +320,7 @@ private:
             [&](Bins& acc, std::size_t lo, std::size_t hi) {
                 for (std::size_t i = lo; i < hi; ++i) {
                     for (std::uint32_t a = 0; a < 3; ++a) {
-                        if (node.hi[a] > node.lo[a]) {
+                        if (spatial_axis(node, a)) {
                             add_spatial(acc, refs[i], node, a);
                         }
                     }
@@ -323,7 +329,7 @@ private:
             [](Bins& a, const Bins& b) { a.merge(b); });
         Candidate best;
         for (std::uint32_t a = 0; a < 3; ++a) {
-            if (node.hi[a] > node.lo[a]) {
+            if (spatial_axis(node, a)) {
                 sweep(g, a, true, best);
             }
         }
