@@ -112,6 +112,8 @@ TEST_CASE("every builder gives a valid, tight, deterministic tree", "[accel][bvh
     CHECK(info.nodes == bvh.nodes.size());
     CHECK(info.leaves == (bvh.nodes.size() + 1) / 2);
     CHECK(info.bytes == bvh.nodes.size() * 32 + bvh.prim_ids.size() * 4);
+    // Object splits reference each usable primitive exactly once; spatial splits may cut one.
+    CHECK((builder == "bvh:sbvh" || bvh.prim_ids.empty() || info.refs_per_prim == 1.0));
     if (count == 0) {
         CHECK(bvh.nodes.empty());
         CHECK(bvh.bounds().empty());
@@ -308,6 +310,19 @@ TEST_CASE("validate reports broken trees", "[accel][bvh]") {
     b = good;
     b.nodes[0].first = 0;  // cycle
     CHECK_FALSE(b.validate().empty());
+    // A primitive may sit in several leaves (spatial splits), never twice in one.
+    const Bounds3f box{{0, 0, 0}, {1, 1, 1}};
+    Bvh shared;
+    shared.prim_count = 2;
+    shared.config.max_leaf_size = 4;
+    shared.prim_ids = {0, 1, 1};
+    shared.nodes.push_back(BvhNode::make_inner(box, 1, 0));
+    shared.nodes.push_back(BvhNode::make_leaf(box, 0, 2));
+    shared.nodes.push_back(BvhNode::make_leaf(box, 2, 1));
+    CHECK(shared.validate().empty());
+    CHECK(shared.info().refs_per_prim == 1.5);
+    shared.prim_ids = {0, 0, 1};
+    CHECK(shared.validate().find("twice in one leaf") != std::string::npos);
     // Aligned leaves: a leaf moved one slot back over the padding before it holds a padding slot
     // and leaves its last slot in no leaf.
     const Bvh aligned = align_leaf_slots(good, 4);

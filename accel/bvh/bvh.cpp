@@ -72,10 +72,12 @@ std::string bvh_detail::use_leaf_slots(std::span<const std::uint32_t> prim_ids,
         }
         used[s] = 1;
     }
-    std::vector<std::uint32_t> ids(prim_ids.begin() + first, prim_ids.begin() + first + count);
-    std::sort(ids.begin(), ids.end());
-    if (const auto twice = std::adjacent_find(ids.begin(), ids.end()); twice != ids.end()) {
-        return "primitive " + std::to_string(*twice) + " twice in one leaf";
+    if (count > 1) {
+        std::vector<std::uint32_t> ids(prim_ids.begin() + first, prim_ids.begin() + first + count);
+        std::sort(ids.begin(), ids.end());
+        if (const auto twice = std::adjacent_find(ids.begin(), ids.end()); twice != ids.end()) {
+            return "primitive " + std::to_string(*twice) + " twice in one leaf";
+        }
     }
     return {};
 }
