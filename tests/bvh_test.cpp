@@ -471,6 +471,31 @@ TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[
     }
 }
 
+TEST_CASE("TopDown gives the same tree with node boxes before or after the split", "[accel][bvh]") {
+    // bvh:lbvh and bvh:median fill boxes in bottom-up (NodeBoxes::after_split); the SAH rows
+    // compute them top-down for their costs. min / max are exact, so the trees must match.
+    const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
+    const bool parallel = GENERATE(false, true);
+    CAPTURE(static_cast<int>(kind), parallel);
+    const std::vector<Bounds3f> boxes = test::random_soup(kind, 17, 70000).boxes;
+    Bvh::Config cfg;
+    cfg.max_leaf_size = 4;
+    const auto split = [](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
+                          bool) -> std::optional<bvh_detail::Split> {
+        if (e - b <= t.config.max_leaf_size) {
+            return std::nullopt;
+        }
+        return t.median_split(b, e);
+    };
+    const BuildInput in{boxes, {}};
+    const Bvh before = bvh_detail::TopDown(in, bvh_detail::clamped(cfg)).run(split, parallel);
+    const Bvh after = bvh_detail::TopDown(in, bvh_detail::clamped(cfg))
+                          .run<bvh_detail::NodeBoxes::after_split>(split, parallel);
+    check_layout(before, boxes);
+    REQUIRE(before.nodes.size() > 1000);
+    CHECK(before == after);
+}
+
 TEST_CASE("sort keys order floats as they compare; the radix sort is a stable sort on them",
           "[accel][bvh]") {
     // The full-sweep builder sorts centres as float_order_key(centre) << 32 | id.

@@ -299,6 +299,12 @@ public:
     BvhNodes compact() const;
 };
 
+/// When TopDown::run computes a node's box: before its split, from its primitives, for splits
+/// that read it (SAH costs); or after, as the union of its children's (its leaf range's for a
+/// leaf), for splits that ignore it (LBVH, median): every primitive box is then read once, not
+/// once per level. min and max are exact, so both give the same boxes.
+enum class NodeBoxes { before_split, after_split };
+
 /// State of one top-down build: input boxes, centres, the working order of usable primitive ids
 /// (each node owns a contiguous range of it) and the output tree.
 class TopDown {
@@ -330,24 +336,29 @@ public:
     /// split(*this, b, e, box, balance) returns a Split or nullopt for a leaf; when balance is true
     /// it must return a balanced split, and it must split whenever e - b > max_leaf_size. It may
     /// run concurrently on disjoint ranges, touching only ids[b, e) and scratch of its own range or
-    /// thread. Returns the finished tree, the same for any thread count.
-    template <class SplitFn>
+    /// thread. With NodeBoxes::after_split the split is handed an empty box (it must not need one)
+    /// and each node's box is filled in once its subtree is built. Returns the finished tree, the
+    /// same for any thread count and either NodeBoxes.
+    template <NodeBoxes Boxes = NodeBoxes::before_split, class SplitFn>
     Bvh run(SplitFn&& split, bool parallel = false) {
         Bvh bvh;
         bvh.prim_count = static_cast<std::uint32_t>(boxes.size());
         bvh.unreferenced_count = bvh.prim_count - static_cast<std::uint32_t>(ids.size());
         bvh.config = config;
         const auto n = static_cast<std::uint32_t>(ids.size());
+        const auto root_box = [&] {
+            return Boxes == NodeBoxes::before_split ? range_bounds(0, n) : Bounds3f{};
+        };
         if (parallel && n >= parallel_min) {
             // Every subtree writes into its own fixed region of one array (no copies of finished
             // subtrees into their parents' arrays), then one pass closes the gaps.
             const SlotArray slots(2 * n - 1);
-            build_slotted(slots.slots, split, 0, 1, 0, n, 0, range_bounds(0, n));
+            build_slotted<Boxes>(slots.slots, split, 0, 1, 0, n, 0, root_box());
             bvh.nodes = slots.compact();
         } else if (n != 0) {
             bvh.nodes.reserve(2 * n - 1);
             bvh.nodes.emplace_back();
-            build_dense(bvh.nodes, split, 0, 0, n, 0, range_bounds(0, n));
+            build_dense<Boxes>(bvh.nodes, split, 0, 0, n, 0, root_box());
         }
         bvh.prim_ids = std::move(ids);  // the build is done with them
         return bvh;
@@ -375,57 +386,88 @@ private:
         return s;
     }
 
+    // The boxes of the children of ids[b, e) split at m: their ranges' unions (before_split), or
+    // empty ones, filled in later (after_split).
+    template <NodeBoxes Boxes>
+    std::pair<Bounds3f, Bounds3f> child_boxes(std::uint32_t b,
+                                              std::uint32_t m,
+                                              std::uint32_t e) const {
+        if constexpr (Boxes == NodeBoxes::before_split) {
+            return {range_bounds(b, m), range_bounds(m, e)};
+        } else {
+            return {};
+        }
+    }
+
+    // A node's box: the one handed down (before_split), or, once its subtree is built, its leaf
+    // range's union or its children's (after_split).
+    template <NodeBoxes Boxes>
+    Bounds3f leaf_box(std::uint32_t b, std::uint32_t e, const Bounds3f& given) const {
+        return Boxes == NodeBoxes::before_split ? given : range_bounds(b, e);
+    }
+    template <NodeBoxes Boxes>
+    static Bounds3f inner_box(const Bounds3f& given, Bounds3f left, const Bounds3f& right) {
+        return Boxes == NodeBoxes::before_split ? given : left.extend(right);
+    }
+
     // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
-    // depth-first pair order (both children, then the left subtree, then the right).
-    template <class SplitFn>
-    void build_dense(BvhNodes& nodes,
-                     SplitFn& split,
-                     std::uint32_t node,
-                     std::uint32_t b,
-                     std::uint32_t e,
-                     std::uint32_t depth,
-                     const Bounds3f& box) {
-        const std::optional<Split> s = decide(split, b, e, depth, box);
+    // depth-first pair order (both children, then the left subtree, then the right); returns the
+    // node's box.
+    template <NodeBoxes Boxes, class SplitFn>
+    Bounds3f build_dense(BvhNodes& nodes,
+                         SplitFn& split,
+                         std::uint32_t node,
+                         std::uint32_t b,
+                         std::uint32_t e,
+                         std::uint32_t depth,
+                         const Bounds3f& given) {
+        const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
+            const Bounds3f box = leaf_box<Boxes>(b, e, given);
             nodes[node] = BvhNode::make_leaf(box, b, e - b);
-            return;
+            return box;
         }
         const auto left = static_cast<std::uint32_t>(nodes.size());
         nodes.emplace_back();
         nodes.emplace_back();
+        const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
+        const Bounds3f lb = build_dense<Boxes>(nodes, split, left, b, s->mid, depth + 1, lg);
+        const Bounds3f rb = build_dense<Boxes>(nodes, split, left + 1, s->mid, e, depth + 1, rg);
+        const Bounds3f box = inner_box<Boxes>(given, lb, rb);
         nodes[node] = BvhNode::make_inner(box, left, s->axis);
-        const Bounds3f left_box = range_bounds(b, s->mid), right_box = range_bounds(s->mid, e);
-        build_dense(nodes, split, left, b, s->mid, depth + 1, left_box);
-        build_dense(nodes, split, left + 1, s->mid, e, depth + 1, right_box);
+        return box;
     }
 
     // Fills slots[node] with the subtree of ids[b, e) and its descendants into the region
     // slots[base, base + 2 (e - b) - 2) (a subtree of k primitives has at most 2k - 1 nodes): the
     // children at base and base + 1, the left child's descendants from base + 2, the right
     // child's from base + 2 (mid - b). Depth-first pair order with gaps, which
-    // SlotArray::compact closes; children of large ranges build as parallel tasks.
-    template <class SplitFn>
-    void build_slotted(std::span<BvhNode> slots,
-                       SplitFn& split,
-                       std::uint32_t node,
-                       std::uint32_t base,
-                       std::uint32_t b,
-                       std::uint32_t e,
-                       std::uint32_t depth,
-                       const Bounds3f& box) {
-        const std::optional<Split> s = decide(split, b, e, depth, box);
+    // SlotArray::compact closes; children of large ranges build as parallel tasks. Returns the
+    // node's box.
+    template <NodeBoxes Boxes, class SplitFn>
+    Bounds3f build_slotted(std::span<BvhNode> slots,
+                           SplitFn& split,
+                           std::uint32_t node,
+                           std::uint32_t base,
+                           std::uint32_t b,
+                           std::uint32_t e,
+                           std::uint32_t depth,
+                           const Bounds3f& given) {
+        const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
+            const Bounds3f box = leaf_box<Boxes>(b, e, given);
             slots[node] = BvhNode::make_leaf(box, b, e - b);
-            return;
+            return box;
         }
-        slots[node] = BvhNode::make_inner(box, base, s->axis);
         const std::uint32_t m = s->mid;
-        const Bounds3f left_box = range_bounds(b, m), right_box = range_bounds(m, e);
+        const auto [lg, rg] = child_boxes<Boxes>(b, m, e);
+        Bounds3f lb, rb;
         const auto left = [&] {
-            build_slotted(slots, split, base, base + 2, b, m, depth + 1, left_box);
+            lb = build_slotted<Boxes>(slots, split, base, base + 2, b, m, depth + 1, lg);
         };
         const auto right = [&] {
-            build_slotted(slots, split, base + 1, base + 2 * (m - b), m, e, depth + 1, right_box);
+            rb = build_slotted<Boxes>(slots, split, base + 1, base + 2 * (m - b), m, e, depth + 1,
+                                      rg);
         };
         if (e - b >= parallel_min) {
             tbb::parallel_invoke(left, right);
@@ -433,6 +475,9 @@ private:
             left();
             right();
         }
+        const Bounds3f box = inner_box<Boxes>(given, lb, rb);
+        slots[node] = BvhNode::make_inner(box, base, s->axis);
+        return box;
     }
 };
 

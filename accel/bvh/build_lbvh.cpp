@@ -3,7 +3,7 @@
 // (morton_bits per axis over the centroid bounds), sorted (ties by id); a node splits where its
 // highest differing code bit flips, runs of equal codes split at their middle. This variant walks
 // the same tree top-down (subtrees in parallel with `threads`) and stops at max_leaf_size; node
-// boxes are the unions of their ranges (what a bottom-up refit gives). Cost: O(N log N) for the
+// boxes are filled in bottom-up (a refit: each primitive box read once). Cost: O(N log N) for the
 // sort (a parallel LSD radix sort on the codes) and the searches.
 
 #include "accel/bvh/build_common.h"
@@ -87,7 +87,7 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
         const auto mid = static_cast<std::uint32_t>(first_set - codes.begin());
         return bvh_detail::Split{mid, 2 - bit % 3};
     };
-    return td.run(split, parallel);
+    return td.run<bvh_detail::NodeBoxes::after_split>(split, parallel);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Object-median BVH (the "equal counts" split of Kay & Kajiya 1986 style hierarchies, pbrt's
 // EqualCounts): split at the median centroid on the largest centroid axis until a range fits in
-// one leaf. Cost: O(N log N) with nth_element; subtrees in parallel with `threads`.
+// one leaf; node boxes filled in bottom-up. Cost: O(N log N) with nth_element; subtrees in
+// parallel with `threads`.
 
 #include "accel/bvh/build_common.h"
 
@@ -15,7 +16,8 @@ Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t
         }
         return t.median_split(b, e);
     };
-    return with_threads(threads, [&] { return td.run(split, threads != 1); });
+    return with_threads(
+        threads, [&] { return td.run<bvh_detail::NodeBoxes::after_split>(split, threads != 1); });
 }
 
 }  // namespace rtlab
