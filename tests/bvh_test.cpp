@@ -480,13 +480,7 @@ TEST_CASE("TopDown gives the same tree with node boxes before or after the split
     const std::vector<Bounds3f> boxes = test::random_soup(kind, 17, 70000).boxes;
     Bvh::Config cfg;
     cfg.max_leaf_size = 4;
-    const auto split = [](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
-                          bool) -> std::optional<bvh_detail::Split> {
-        if (e - b <= t.config.max_leaf_size) {
-            return std::nullopt;
-        }
-        return t.median_split(b, e);
-    };
+    const auto split = bvh_detail::TopDown::median_or_leaf;
     const BuildInput in{boxes, {}};
     const Bvh before = bvh_detail::TopDown(in, bvh_detail::clamped(cfg)).run(split, parallel);
     const Bvh after = bvh_detail::TopDown(in, bvh_detail::clamped(cfg))

@@ -94,6 +94,14 @@ Split TopDown::median_split(std::uint32_t b, std::uint32_t e) {
     return {mid, axis};
 }
 
+std::optional<Split> TopDown::median_or_leaf(
+    TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&, bool) {
+    if (e - b <= t.config.max_leaf_size) {
+        return std::nullopt;
+    }
+    return t.median_split(b, e);
+}
+
 void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) {
     if (bits == 0) {
         return;

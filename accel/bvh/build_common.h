@@ -328,6 +328,9 @@ public:
     Bounds3f centroid_bounds(std::uint32_t b, std::uint32_t e) const;
     /// Object median of ids[b, e) on the largest centroid axis (ties by id); reorders the range.
     Split median_split(std::uint32_t b, std::uint32_t e);
+    /// bvh:median's split function for run: a leaf once e - b fits in one, else median_split.
+    static std::optional<Split> median_or_leaf(
+        TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&, bool);
     /// True when a split of n primitives at `depth` must be balanced (children <= ceil(n/2)) so
     /// that every leaf below stays at depth <= 64: invariant depth + ceil_log2(n) <= 64.
     static bool must_balance(std::uint32_t depth, std::uint32_t n);
@@ -399,15 +402,26 @@ private:
         }
     }
 
-    // A node's box: the one handed down (before_split), or, once its subtree is built, its leaf
-    // range's union or its children's (after_split).
+    // Writes the leaf of ids[b, e) to `out` and returns its box: the one handed down
+    // (before_split) or its range's union (after_split).
     template <NodeBoxes Boxes>
-    Bounds3f leaf_box(std::uint32_t b, std::uint32_t e, const Bounds3f& given) const {
-        return Boxes == NodeBoxes::before_split ? given : range_bounds(b, e);
+    Bounds3f put_leaf(BvhNode& out, std::uint32_t b, std::uint32_t e, const Bounds3f& given) const {
+        const Bounds3f box = Boxes == NodeBoxes::before_split ? given : range_bounds(b, e);
+        out = BvhNode::make_leaf(box, b, e - b);
+        return box;
     }
+    // Writes an inner node with children from `first` to `out` and returns its box: the one handed
+    // down (before_split) or the union of its built children's (after_split).
     template <NodeBoxes Boxes>
-    static Bounds3f inner_box(const Bounds3f& given, Bounds3f left, const Bounds3f& right) {
-        return Boxes == NodeBoxes::before_split ? given : left.extend(right);
+    static Bounds3f put_inner(BvhNode& out,
+                              const Bounds3f& given,
+                              Bounds3f left,
+                              const Bounds3f& right,
+                              std::uint32_t first,
+                              std::uint32_t axis) {
+        const Bounds3f box = Boxes == NodeBoxes::before_split ? given : left.extend(right);
+        out = BvhNode::make_inner(box, first, axis);
+        return box;
     }
 
     // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
@@ -423,9 +437,7 @@ private:
                          const Bounds3f& given) {
         const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
-            const Bounds3f box = leaf_box<Boxes>(b, e, given);
-            nodes[node] = BvhNode::make_leaf(box, b, e - b);
-            return box;
+            return put_leaf<Boxes>(nodes[node], b, e, given);
         }
         const auto left = static_cast<std::uint32_t>(nodes.size());
         nodes.emplace_back();
@@ -433,9 +445,7 @@ private:
         const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
         const Bounds3f lb = build_dense<Boxes>(nodes, split, left, b, s->mid, depth + 1, lg);
         const Bounds3f rb = build_dense<Boxes>(nodes, split, left + 1, s->mid, e, depth + 1, rg);
-        const Bounds3f box = inner_box<Boxes>(given, lb, rb);
-        nodes[node] = BvhNode::make_inner(box, left, s->axis);
-        return box;
+        return put_inner<Boxes>(nodes[node], given, lb, rb, left, s->axis);
     }
 
     // Fills slots[node] with the subtree of ids[b, e) and its descendants into the region
@@ -455,9 +465,7 @@ private:
                            const Bounds3f& given) {
         const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
-            const Bounds3f box = leaf_box<Boxes>(b, e, given);
-            slots[node] = BvhNode::make_leaf(box, b, e - b);
-            return box;
+            return put_leaf<Boxes>(slots[node], b, e, given);
         }
         const std::uint32_t m = s->mid;
         const auto [lg, rg] = child_boxes<Boxes>(b, m, e);
@@ -475,9 +483,7 @@ private:
             left();
             right();
         }
-        const Bounds3f box = inner_box<Boxes>(given, lb, rb);
-        slots[node] = BvhNode::make_inner(box, base, s->axis);
-        return box;
+        return put_inner<Boxes>(slots[node], given, lb, rb, base, s->axis);
     }
 };
 

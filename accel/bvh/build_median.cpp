@@ -9,15 +9,10 @@ namespace rtlab {
 
 Bvh build_bvh_median(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
-    const auto split = [](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f&,
-                          bool) -> std::optional<bvh_detail::Split> {
-        if (e - b <= t.config.max_leaf_size) {
-            return std::nullopt;
-        }
-        return t.median_split(b, e);
-    };
-    return with_threads(
-        threads, [&] { return td.run<bvh_detail::NodeBoxes::after_split>(split, threads != 1); });
+    return with_threads(threads, [&] {
+        return td.run<bvh_detail::NodeBoxes::after_split>(bvh_detail::TopDown::median_or_leaf,
+                                                          threads != 1);
+    });
 }
 
 }  // namespace rtlab
