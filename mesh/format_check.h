@@ -24,4 +24,7 @@ struct DeclaredCounts {
 /// finite coordinates and in-range face indices of at least 3 vertices; returns the counts.
 DeclaredCounts check_mesh_bytes(std::string_view bytes, MeshFormat f, const std::string& what);
 
+/// check_mesh_bytes for PLY (mesh/format_check_ply.cpp).
+DeclaredCounts check_ply(std::string_view bytes, const std::string& what);
+
 }  // namespace rtlab::detail
