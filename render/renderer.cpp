@@ -246,6 +246,158 @@ RenderPlan plan_render(const Scene& s, const RenderSettings& r) {
     return p;
 }
 
+namespace {
+
+/// Where a render's eye rays start: the image size, the sample grid (pixel corners in SPD mode,
+/// else pixels with spp samples each) and the camera frame.
+struct SampleGrid {
+    int width;                                     ///< image
+    int height;                                    ///< image
+    int w;                                         ///< grid: width + 1 in SPD mode
+    int h;                                         ///< grid: height + 1 in SPD mode
+    std::vector<std::pair<float, float>> offsets;  ///< sample offsets within a grid point
+    float inv_samples;
+    CameraFrame frame;
+
+    SampleGrid(const Camera& cam, const RenderSettings& r)
+        : width(cam.width)
+        , height(cam.height)
+        , w(r.spd ? cam.width + 1 : cam.width)
+        , h(r.spd ? cam.height + 1 : cam.height)
+        , offsets(r.spd ? std::vector<std::pair<float, float>>{{0.0f, 0.0f}} : pixel_offsets(r.spp))
+        , inv_samples(1.0f / static_cast<float>(offsets.size()))
+        , frame(cam) {}
+
+    Rayf eye_ray(int x, int y, const std::pair<float, float>& o) const {
+        return frame.ray(static_cast<float>(x) + o.first, static_cast<float>(y) + o.second, width,
+                         height);
+    }
+};
+
+/// The grid points [x0, x1) x [y0, y1) of one tile; slot(x, y) indexes its accumulator.
+struct TileRect {
+    int x0, y0, x1, y1;
+    std::size_t size() const {
+        return static_cast<std::size_t>(x1 - x0) * static_cast<std::size_t>(y1 - y0);
+    }
+    std::uint32_t slot(int x, int y) const {
+        return static_cast<std::uint32_t>((y - y0) * (x1 - x0) + (x - x0));
+    }
+};
+
+/// Aov::color: every sample of the tile (one path per wavelength in spectral mode) through the
+/// integrator instance `trace`.
+void colour_tile(const SampleGrid& g,
+                 const TileRect& t,
+                 const std::vector<SpectralSample>& spectrum,
+                 const TraceContext& ctx,
+                 TraceFn trace,
+                 std::vector<Vec3f>& accum,
+                 RenderStats& st) {
+    std::vector<Path> paths;
+    for (int y = t.y0; y < t.y1; ++y) {
+        for (int x = t.x0; x < t.x1; ++x) {
+            for (const auto& o : g.offsets) {
+                const Rayf ray = g.eye_ray(x, y, o);
+                if (spectrum.empty()) {
+                    const Vec3f w{g.inv_samples, g.inv_samples, g.inv_samples};
+                    paths.push_back({ray, w, t.slot(x, y), 0.0f, 0, PathKind::eye});
+                } else {
+                    for (const SpectralSample& k : spectrum) {
+                        paths.push_back({ray, k.rgb_weight * g.inv_samples, t.slot(x, y),
+                                         k.lambda_nm, 0, PathKind::eye});
+                    }
+                }
+            }
+        }
+    }
+    trace(ctx, std::move(paths), accum, st);
+}
+
+/// The other AOVs: eye rays only, each sample's value (depth: distance and hit weight, resolved
+/// by resolve_aov; normal; heatmap: nodes + primitives) averaged into accum.
+void aov_tile(const Scene& s,
+              const SceneTracer& tracer,
+              const std::vector<std::uint32_t>& base,
+              Aov aov,
+              const SampleGrid& g,
+              const TileRect& t,
+              std::vector<Vec3f>& accum,
+              RenderStats& st) {
+    std::vector<Rayf> rays;
+    std::vector<std::uint32_t> slots;
+    for (int y = t.y0; y < t.y1; ++y) {
+        for (int x = t.x0; x < t.x1; ++x) {
+            for (const auto& o : g.offsets) {
+                rays.push_back(g.eye_ray(x, y, o));
+                slots.push_back(t.slot(x, y));
+            }
+        }
+    }
+    std::vector<Hit> hits(rays.size());
+    std::vector<TraversalStats> counts(rays.size());
+    if (aov == Aov::heatmap) {
+        tracer.intersect_counted(rays, hits, counts);
+    } else {
+        tracer.intersect(rays, hits);
+    }
+    st.eye += rays.size();
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        Vec3f v{0, 0, 0};
+        if (hits[i].valid()) {
+            ++st.hits;
+        }
+        if (aov == Aov::heatmap) {
+            v.x = static_cast<float>(counts[i].nodes + counts[i].prims);
+        } else if (hits[i].valid()) {
+            if (aov == Aov::depth) {
+                v = Vec3f{hits[i].t, 1, 0};  // distance, hit weight: resolved below
+            } else {
+                v = surface_at(s, base, hits[i], rays[i]).n * 0.5f + Vec3f{0.5f, 0.5f, 0.5f};
+            }
+        }
+        accum[slots[i]] += v * g.inv_samples;
+    }
+}
+
+/// SPD mode: each pixel the mean of its four corners on the (width + 1) x (height + 1) grid.
+Image corner_average(const Image& grid, int width, int height) {
+    Image out(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            out.at(x, y) =
+                (grid.at(x, y) + grid.at(x + 1, y) + grid.at(x, y + 1) + grid.at(x + 1, y + 1)) *
+                0.25f;
+        }
+    }
+    return out;
+}
+
+/// Display values of the depth and heatmap AOVs from what the tiles accumulated.
+void resolve_aov(Image& image, Aov aov, RenderStats& stats) {
+    if (aov == Aov::depth) {
+        // .x holds the weighted sum of the hit distances, .y the weight of the samples that hit:
+        // the pixel's depth is their mean over the hits, depth_no_hit when no sample hit.
+        for (Vec3f& p : image.pixels) {
+            const float d = p.y > 0 ? p.x / p.y : depth_no_hit;
+            p = Vec3f{d, d, d};
+        }
+    }
+    if (aov == Aov::heatmap) {
+        double lo = std::numeric_limits<double>::infinity();
+        double hi = 0;
+        for (const Vec3f& p : image.pixels) {
+            lo = std::min(lo, static_cast<double>(p.x));
+            hi = std::max(hi, static_cast<double>(p.x));
+        }
+        stats.heat_min = image.pixels.empty() ? 0.0 : lo;
+        stats.heat_max = hi;
+        colour_heatmap(image, stats.heat_min, stats.heat_max);
+    }
+}
+
+}  // namespace
+
 RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSettings& r) {
     RenderResult out;
     out.plan = plan_render(s, r);
@@ -255,16 +407,7 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
     Camera cam = s.camera;
     cam.width = r.width > 0 ? r.width : cam.width;
     cam.height = r.height > 0 ? r.height : cam.height;
-    const int width = cam.width;
-    const int height = cam.height;
-    const CameraFrame frame(cam);
-
-    // The sample grid: pixel corners in SPD mode, else pixels with spp samples each.
-    const int grid_w = r.spd ? width + 1 : width;
-    const int grid_h = r.spd ? height + 1 : height;
-    const std::vector<std::pair<float, float>> offsets =
-        r.spd ? std::vector<std::pair<float, float>>{{0.0f, 0.0f}} : pixel_offsets(r.spp);
-    const float inv_samples = 1.0f / static_cast<float>(offsets.size());
+    const SampleGrid g(cam, r);
     std::vector<SpectralSample> spectrum;
     if (plan.spectral) {
         spectrum = spectral_samples(r.wavelengths);
@@ -280,86 +423,26 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
     const TraceFn trace = trace_table[(plan.shadows ? 1u : 0u) | (plan.reflection ? 2u : 0u) |
                                       (plan.refraction ? 4u : 0u) | (plan.textures ? 8u : 0u)];
 
-    const int tiles_x = (grid_w + r.tile - 1) / r.tile;
-    const int tiles_y = (grid_h + r.tile - 1) / r.tile;
+    const int tiles_x = (g.w + r.tile - 1) / r.tile;
+    const int tiles_y = (g.h + r.tile - 1) / r.tile;
     const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
-    Image grid(grid_w, grid_h);
+    Image grid(g.w, g.h);
     std::vector<RenderStats> tile_stats(tile_count);
     std::atomic<std::size_t> done{0};
 
-    const auto render_tile = [&](std::size_t t) {
-        const int x0 = static_cast<int>(t % static_cast<std::size_t>(tiles_x)) * r.tile;
-        const int y0 = static_cast<int>(t / static_cast<std::size_t>(tiles_x)) * r.tile;
-        const int x1 = std::min(grid_w, x0 + r.tile);
-        const int y1 = std::min(grid_h, y0 + r.tile);
-        const int tw = x1 - x0;
-        std::vector<Vec3f> accum(static_cast<std::size_t>(tw) * static_cast<std::size_t>(y1 - y0),
-                                 Vec3f{0, 0, 0});
-        RenderStats& st = tile_stats[t];
-        const auto eye_ray = [&](int x, int y, const std::pair<float, float>& o) {
-            return frame.ray(static_cast<float>(x) + o.first, static_cast<float>(y) + o.second,
-                             width, height);
-        };
+    const auto render_tile = [&](std::size_t i) {
+        const int x0 = static_cast<int>(i % static_cast<std::size_t>(tiles_x)) * r.tile;
+        const int y0 = static_cast<int>(i / static_cast<std::size_t>(tiles_x)) * r.tile;
+        const TileRect t{x0, y0, std::min(g.w, x0 + r.tile), std::min(g.h, y0 + r.tile)};
+        std::vector<Vec3f> accum(t.size(), Vec3f{0, 0, 0});
         if (r.aov == Aov::color) {
-            std::vector<Path> paths;
-            for (int y = y0; y < y1; ++y) {
-                for (int x = x0; x < x1; ++x) {
-                    const auto slot = static_cast<std::uint32_t>((y - y0) * tw + (x - x0));
-                    for (const auto& o : offsets) {
-                        const Rayf ray = eye_ray(x, y, o);
-                        if (spectrum.empty()) {
-                            const Vec3f w{inv_samples, inv_samples, inv_samples};
-                            paths.push_back({ray, w, slot, 0.0f, 0, PathKind::eye});
-                        } else {
-                            for (const SpectralSample& k : spectrum) {
-                                paths.push_back({ray, k.rgb_weight * inv_samples, slot, k.lambda_nm,
-                                                 0, PathKind::eye});
-                            }
-                        }
-                    }
-                }
-            }
-            trace(ctx, std::move(paths), accum, st);
+            colour_tile(g, t, spectrum, ctx, trace, accum, tile_stats[i]);
         } else {
-            std::vector<Rayf> rays;
-            std::vector<std::uint32_t> slots;
-            for (int y = y0; y < y1; ++y) {
-                for (int x = x0; x < x1; ++x) {
-                    for (const auto& o : offsets) {
-                        rays.push_back(eye_ray(x, y, o));
-                        slots.push_back(static_cast<std::uint32_t>((y - y0) * tw + (x - x0)));
-                    }
-                }
-            }
-            std::vector<Hit> hits(rays.size());
-            std::vector<TraversalStats> counts(rays.size());
-            if (r.aov == Aov::heatmap) {
-                tracer.intersect_counted(rays, hits, counts);
-            } else {
-                tracer.intersect(rays, hits);
-            }
-            st.eye += rays.size();
-            for (std::size_t i = 0; i < rays.size(); ++i) {
-                Vec3f v{0, 0, 0};
-                if (hits[i].valid()) {
-                    ++st.hits;
-                }
-                if (r.aov == Aov::heatmap) {
-                    v.x = static_cast<float>(counts[i].nodes + counts[i].prims);
-                } else if (hits[i].valid()) {
-                    if (r.aov == Aov::depth) {
-                        v = Vec3f{hits[i].t, 1, 0};  // distance, hit weight: resolved below
-                    } else {
-                        v = surface_at(s, base, hits[i], rays[i]).n * 0.5f +
-                            Vec3f{0.5f, 0.5f, 0.5f};
-                    }
-                }
-                accum[slots[i]] += v * inv_samples;
-            }
+            aov_tile(s, tracer, base, r.aov, g, t, accum, tile_stats[i]);
         }
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                grid.at(x, y) = accum[static_cast<std::size_t>((y - y0) * tw + (x - x0))];
+        for (int y = t.y0; y < t.y1; ++y) {
+            for (int x = t.x0; x < t.x1; ++x) {
+                grid.at(x, y) = accum[t.slot(x, y)];
             }
         }
         const std::size_t finished = done.fetch_add(1) + 1;
@@ -371,31 +454,12 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
     const auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t t = range.begin(); t != range.end(); ++t) {
-                              render_tile(t);
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                              render_tile(i);
                           }
                       });
-
-    if (r.spd) {
-        out.image = Image(width, height);
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                out.image.at(x, y) = (grid.at(x, y) + grid.at(x + 1, y) + grid.at(x, y + 1) +
-                                      grid.at(x + 1, y + 1)) *
-                                     0.25f;
-            }
-        }
-    } else {
-        out.image = std::move(grid);
-    }
-    if (r.aov == Aov::depth) {
-        // .x holds the weighted sum of the hit distances, .y the weight of the samples that hit:
-        // the pixel's depth is their mean over the hits, depth_no_hit when no sample hit.
-        for (Vec3f& p : out.image.pixels) {
-            const float d = p.y > 0 ? p.x / p.y : depth_no_hit;
-            p = Vec3f{d, d, d};
-        }
-    }
+    out.image = r.spd ? corner_average(grid, g.width, g.height) : std::move(grid);
+    resolve_aov(out.image, r.aov, out.stats);
     out.stats.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     for (const RenderStats& t : tile_stats) {
@@ -404,17 +468,6 @@ RenderResult render(const Scene& s, const SceneTracer& tracer, const RenderSetti
         out.stats.reflected += t.reflected;
         out.stats.refracted += t.refracted;
         out.stats.hits += t.hits;
-    }
-    if (r.aov == Aov::heatmap) {
-        double lo = std::numeric_limits<double>::infinity();
-        double hi = 0;
-        for (const Vec3f& p : out.image.pixels) {
-            lo = std::min(lo, static_cast<double>(p.x));
-            hi = std::max(hi, static_cast<double>(p.x));
-        }
-        out.stats.heat_min = out.image.pixels.empty() ? 0.0 : lo;
-        out.stats.heat_max = hi;
-        colour_heatmap(out.image, out.stats.heat_min, out.stats.heat_max);
     }
     return out;
 }
