@@ -115,7 +115,8 @@ void print_explain(const std::string& scene, const RenderPlan& p) {
     std::cout << "instantiation: " << p.instantiation << "\n";
 }
 
-int run_render(const RenderArgs& a) {
+/// The checks that need no scene: output and statistics paths, contradicting options.
+void check_render_args(const RenderArgs& a) {
     if (a.output.empty() && !a.explain) {
         throw Error("render: -o OUT is required (or --explain alone)");
     }
@@ -137,12 +138,10 @@ int run_render(const RenderArgs& a) {
     if (!a.stats_json.empty()) {
         check_output_path(a.stats_json);  // before the work, not after it
     }
-    std::optional<tbb::global_control> threads;
-    if (a.threads > 0) {
-        threads.emplace(tbb::global_control::max_allowed_parallelism,
-                        static_cast<std::size_t>(a.threads));
-    }
+}
 
+/// The renderer's settings from the command line, with the SPD mode's defaults.
+RenderSettings render_settings(const RenderArgs& a) {
     RenderSettings rs;
     rs.width = a.width;
     rs.height = a.height;
@@ -167,19 +166,124 @@ int run_render(const RenderArgs& a) {
         rs.height = a.height_opt->count() > 0 ? a.height : 512;
         rs.max_depth = a.depth_opt->count() > 0 ? a.max_depth : 4;
     }
+    return rs;
+}
 
+/// Refuses an image whose buffers would exceed --max-memory (default half of RAM).
+void check_render_memory(const RenderArgs& a, const RenderSettings& rs, const Scene& scene) {
+    const std::uint64_t w =
+        rs.width > 0 ? std::uint64_t(rs.width) : std::uint64_t(scene.camera.width);
+    const std::uint64_t h =
+        rs.height > 0 ? std::uint64_t(rs.height) : std::uint64_t(scene.camera.height);
+    const bool exr = std::filesystem::path(a.output).extension() == ".exr";
+    gen::check_memory(fmt::format("render {}x{}", w, h), render_bytes(w, h, rs.spd, exr),
+                      gen::memory_limit_mib(a.max_memory_mib));
+}
+
+/// Writes the image to `output` (a depth PNG scaled to [0, 1], non-finite pixels as black, with
+/// a warning); returns how many pixels were not finite.
+std::size_t write_render(const Image& image, Aov aov, const std::string& output) {
+    Image shown = image;
+    std::string ext = std::filesystem::path(output).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (aov == Aov::depth && ext == ".png") {
+        // PNG holds [0, 1]: scale so the farthest hit is white, and mark pixels without a hit
+        // (depth_no_hit) magenta, a colour no grey depth takes (EXR keeps the distances and -1).
+        float far = 0;
+        for (const Vec3f& p : shown.pixels) {
+            far = std::max(far, p.x);
+        }
+        for (Vec3f& p : shown.pixels) {
+            p = p.x < 0 ? Vec3f{1, 0, 1} : (far > 0 ? p / far : p);
+        }
+    }
+    const std::size_t non_finite = clear_non_finite(shown);
+    if (non_finite > 0) {
+        std::cerr << fmt::format(
+            "rtlab render: {} pixels were NaN or infinite (light or material "
+            "values too large for float?); written as black\n",
+            non_finite);
+    }
+    write_image(shown, output, aov == Aov::color);
+    return non_finite;
+}
+
+/// Rays per second of a render, in millions.
+double render_mrays(const RenderStats& st) {
+    return st.render_ms > 0 ? static_cast<double>(st.total()) / (st.render_ms * 1e3) : 0.0;
+}
+
+/// The statistics line (and the heatmap's range) printed on stderr.
+void print_render_stats(const RenderResult& res, const RenderSettings& rs, const std::string& out) {
+    const RenderStats& st = res.stats;
+    std::ostringstream msg;
+    msg << "rays: eye " << st.eye << ", shadow " << st.shadow << ", reflected " << st.reflected
+        << ", refracted " << st.refracted << ", total " << st.total() << " (" << render_mrays(st)
+        << " Mrays/s); hits " << st.hits << "; render " << st.render_ms << " ms, build "
+        << st.build_ms << " ms; " << res.image.width << "x" << res.image.height << " -> " << out
+        << "\n";
+    if (rs.aov == Aov::heatmap) {
+        msg << "heatmap: nodes + primitive tests per pixel from " << st.heat_min << " (blue) to "
+            << st.heat_max << " (red)\n";
+    }
+    std::cerr << msg.str();
+}
+
+/// The --stats-json object.
+nlohmann::json render_stats_json(const RenderArgs& a,
+                                 const std::string& accel,
+                                 const SceneTracer& tracer,
+                                 const RenderSettings& rs,
+                                 const RenderResult& res,
+                                 std::size_t non_finite) {
+    const RenderStats& st = res.stats;
+    nlohmann::json j;
+    j["scene"] = a.scene;
+    j["output"] = a.output;
+    j["accel"] = accel;
+    j["sets"] = tracer.set_methods();
+    j["width"] = res.image.width;
+    j["height"] = res.image.height;
+    j["spp"] = rs.spd ? 4 : rs.spp;
+    j["spd"] = rs.spd;
+    j["max_depth"] = rs.max_depth;
+    j["aov"] = to_string(rs.aov);
+    j["fresnel"] = fresnel_name(rs.fresnel);
+    j["spectral"] = res.plan.spectral;
+    j["offset"] = to_string(rs.offset);
+    j["epsilon"] = rs.epsilon;
+    j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+    j["features"] = feature_names(res.plan.features);
+    j["instantiation"] = res.plan.instantiation;
+    j["rays"] = {{"eye", st.eye},
+                 {"shadow", st.shadow},
+                 {"reflected", st.reflected},
+                 {"refracted", st.refracted},
+                 {"total", st.total()}};
+    j["hits"] = st.hits;
+    j["non_finite_pixels"] = non_finite;
+    j["render_ms"] = st.render_ms;
+    j["build_ms"] = st.build_ms;
+    j["mrays_per_s"] = render_mrays(st);
+    if (rs.aov == Aov::heatmap) {
+        j["heatmap"] = {{"min", st.heat_min}, {"max", st.heat_max}};
+    }
+    return j;
+}
+
+int run_render(const RenderArgs& a) {
+    check_render_args(a);
+    std::optional<tbb::global_control> threads;
+    if (a.threads > 0) {
+        threads.emplace(tbb::global_control::max_allowed_parallelism,
+                        static_cast<std::size_t>(a.threads));
+    }
+    RenderSettings rs = render_settings(a);
     const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
     const Scene scene = load_scene(a.scene);
-    {
-        const std::uint64_t w =
-            rs.width > 0 ? std::uint64_t(rs.width) : std::uint64_t(scene.camera.width);
-        const std::uint64_t h =
-            rs.height > 0 ? std::uint64_t(rs.height) : std::uint64_t(scene.camera.height);
-        const bool exr = std::filesystem::path(a.output).extension() == ".exr";
-        gen::check_memory(fmt::format("render {}x{}", w, h), render_bytes(w, h, rs.spd, exr),
-                          gen::memory_limit_mib(a.max_memory_mib));
-    }
-    const RenderPlan plan = plan_render(scene, rs);
+    check_render_memory(a, rs, scene);
+    const RenderPlan plan = plan_render(scene, rs);  // bad settings fail before the build
     if (a.explain) {
         print_explain(a.scene, plan);
         if (a.output.empty()) {
@@ -199,79 +303,12 @@ int run_render(const RenderArgs& a) {
     if (isatty(2) != 0) {
         rs.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
     }
-    RenderResult res = render(scene, tracer, rs);
-    Image shown = res.image;
-    std::string ext = std::filesystem::path(a.output).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (rs.aov == Aov::depth && ext == ".png") {
-        // PNG holds [0, 1]: scale so the farthest hit is white, and mark pixels without a hit
-        // (depth_no_hit) magenta, a colour no grey depth takes (EXR keeps the distances and -1).
-        float far = 0;
-        for (const Vec3f& p : shown.pixels) {
-            far = std::max(far, p.x);
-        }
-        for (Vec3f& p : shown.pixels) {
-            p = p.x < 0 ? Vec3f{1, 0, 1} : (far > 0 ? p / far : p);
-        }
-    }
-    const std::size_t non_finite = clear_non_finite(shown);
-    if (non_finite > 0) {
-        std::cerr << fmt::format(
-            "rtlab render: {} pixels were NaN or infinite (light or material "
-            "values too large for float?); written as black\n",
-            non_finite);
-    }
-    write_image(shown, a.output, rs.aov == Aov::color);
-
-    const RenderStats& st = res.stats;
-    const double mrays =
-        st.render_ms > 0 ? static_cast<double>(st.total()) / (st.render_ms * 1e3) : 0.0;
-    std::ostringstream msg;
-    msg << "rays: eye " << st.eye << ", shadow " << st.shadow << ", reflected " << st.reflected
-        << ", refracted " << st.refracted << ", total " << st.total() << " (" << mrays
-        << " Mrays/s); hits " << st.hits << "; render " << st.render_ms << " ms, build "
-        << st.build_ms << " ms; " << res.image.width << "x" << res.image.height << " -> "
-        << a.output << "\n";
-    if (rs.aov == Aov::heatmap) {
-        msg << "heatmap: nodes + primitive tests per pixel from " << st.heat_min << " (blue) to "
-            << st.heat_max << " (red)\n";
-    }
-    std::cerr << msg.str();
-
+    const RenderResult res = render(scene, tracer, rs);
+    const std::size_t non_finite = write_render(res.image, rs.aov, a.output);
+    print_render_stats(res, rs, a.output);
     if (!a.stats_json.empty()) {
-        nlohmann::json j;
-        j["scene"] = a.scene;
-        j["output"] = a.output;
-        j["accel"] = accel;
-        j["sets"] = tracer.set_methods();
-        j["width"] = res.image.width;
-        j["height"] = res.image.height;
-        j["spp"] = rs.spd ? 4 : rs.spp;
-        j["spd"] = rs.spd;
-        j["max_depth"] = rs.max_depth;
-        j["aov"] = to_string(rs.aov);
-        j["fresnel"] = fresnel_name(rs.fresnel);
-        j["spectral"] = plan.spectral;
-        j["offset"] = to_string(rs.offset);
-        j["epsilon"] = rs.epsilon;
-        j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
-        j["features"] = feature_names(plan.features);
-        j["instantiation"] = plan.instantiation;
-        j["rays"] = {{"eye", st.eye},
-                     {"shadow", st.shadow},
-                     {"reflected", st.reflected},
-                     {"refracted", st.refracted},
-                     {"total", st.total()}};
-        j["hits"] = st.hits;
-        j["non_finite_pixels"] = non_finite;
-        j["render_ms"] = st.render_ms;
-        j["build_ms"] = st.build_ms;
-        j["mrays_per_s"] = mrays;
-        if (rs.aov == Aov::heatmap) {
-            j["heatmap"] = {{"min", st.heat_min}, {"max", st.heat_max}};
-        }
-        write_file_atomically(a.stats_json, j.dump(2) + "\n");
+        write_file_atomically(
+            a.stats_json, render_stats_json(a, accel, tracer, rs, res, non_finite).dump(2) + "\n");
     }
     return 0;
 }
