@@ -266,24 +266,15 @@ void sphere_rows(const Options& opt, std::vector<Row>& rows) {
     });
 }
 
-/// The flake's tangent contacts (size factor 2: 91 spheres on the floor polygon). Child on
-/// parent: hit points on each child within 30 degrees of its contact with the parent. Root on
-/// floor: hit points on the root within 30 degrees of its lowest point, and on the floor within
-/// 0.05 of the contact point (which lies on the diagonal shared by the floor's two triangles).
-/// Only the surface a ray leaves counts as a re-intersection.
+/// Flake contact rows from sphere starts: hit points on a child within 30 degrees of its contact
+/// with the parent (child on parent), and on the root within 30 degrees of its lowest point.
 template <class T>
-void flake_rows(const Options& opt, std::vector<Row>& rows) {
-    gen::GenOptions go;
-    go.size = 2;
-    const Scene scene = gen::generate("flake", go);
-    const std::vector<gen::FlakeSphere> flake = gen::sphere_flake(go.size);
-    if (scene.spheres.size() != flake.size() || scene.polygons.size() != 1) {
-        rows.push_back(make_row("self_intersection/flake_contacts", "setup", "-", 0, 1,
-                                "setup errors", 0, "flake scene layout changed"));
-        return;
-    }
-    const std::string case_name = "self_intersection/flake_contacts";
-    Sampler rng(opt.seed, std::is_same_v<T, float> ? 520 : 620);
+void flake_sphere_rows(const Options& opt,
+                       const Scene& scene,
+                       const std::vector<gen::FlakeSphere>& flake,
+                       Sampler& rng,
+                       const std::string& case_name,
+                       std::vector<Row>& rows) {
     // Points on sphere `shape` near the unit direction `toward` (from its centre), within `cone`.
     const auto near_point = [&](const Vec3d& toward, double cone) {
         for (;;) {
@@ -349,6 +340,17 @@ void flake_rows(const Options& opt, std::vector<Row>& rows) {
                            false, rows);
         });
     }
+}
+
+/// Flake contact rows from floor starts: hit points on the floor within 0.05 of the root's
+/// contact point (which lies on the diagonal shared by the floor's two triangles).
+template <class T>
+void flake_floor_rows(const Options& opt,
+                      const Scene& scene,
+                      Sampler& rng,
+                      const std::string& case_name,
+                      std::vector<Row>& rows) {
+    const std::size_t n = opt.rays;
     // Floor starts: the polygon as the fan (0, 1, 2), (0, 2, 3); primaries from above.
     const std::vector<Vec3f>& q = scene.polygons[0].vertices;
     const std::array<Triangle<T>, 2> floor{
@@ -399,6 +401,28 @@ void flake_rows(const Options& opt, std::vector<Row>& rows) {
                            " grazing starts skipped",
                        false, rows);
     });
+}
+
+/// The flake's tangent contacts (size factor 2: 91 spheres on the floor polygon). Child on
+/// parent: hit points on each child within 30 degrees of its contact with the parent. Root on
+/// floor: hit points on the root within 30 degrees of its lowest point, and on the floor within
+/// 0.05 of the contact point (which lies on the diagonal shared by the floor's two triangles).
+/// Only the surface a ray leaves counts as a re-intersection.
+template <class T>
+void flake_rows(const Options& opt, std::vector<Row>& rows) {
+    gen::GenOptions go;
+    go.size = 2;
+    const Scene scene = gen::generate("flake", go);
+    const std::vector<gen::FlakeSphere> flake = gen::sphere_flake(go.size);
+    if (scene.spheres.size() != flake.size() || scene.polygons.size() != 1) {
+        rows.push_back(make_row("self_intersection/flake_contacts", "setup", "-", 0, 1,
+                                "setup errors", 0, "flake scene layout changed"));
+        return;
+    }
+    const std::string case_name = "self_intersection/flake_contacts";
+    Sampler rng(opt.seed, std::is_same_v<T, float> ? 520 : 620);
+    flake_sphere_rows<T>(opt, scene, flake, rng, case_name, rows);
+    flake_floor_rows<T>(opt, scene, rng, case_name, rows);
 }
 
 }  // namespace
