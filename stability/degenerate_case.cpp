@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
 #include <tbb/global_control.h>
 
 namespace rtlab::stab {
@@ -198,6 +199,92 @@ std::vector<Hit> reference_hits(const std::vector<Watertight<float>::Prepared>& 
     return out;
 }
 
+/// f(name, tracer) for every structure `sel` selects with robust or plain traversal, built on
+/// scene with the watertight method.
+template <class F>
+void for_each_tracer(const Scene& scene, bool robust, const Selection& sel, F&& f) {
+    for (const AccelEntry& e : accel_registry()) {
+        if (!selected(sel, e.name, robust)) {
+            continue;
+        }
+        TraceSetup setup;
+        setup.accel = std::string(e.name);
+        setup.methods = {"watertight"};
+        setup.robust = robust;
+        const SceneTracer tracer(scene, setup);
+        f(e.name, tracer);
+    }
+}
+
+/// One valid ray set through every selected structure (watertight method, robust or plain
+/// traversal) against the box-free loop's hits `ref`: disagreements, naming the structures.
+Row valid_set_row(const Scene& scene,
+                  const RaySet& set,
+                  const std::vector<Hit>& ref,
+                  bool robust,
+                  const Selection& sel) {
+    std::size_t ref_misses = 0;
+    for (const Hit& hit : ref) {
+        ref_misses += hit.valid() ? 0 : 1;
+    }
+    std::size_t failures = 0, rays = 0;
+    double ns = 0;
+    std::string who;
+    for_each_tracer(scene, robust, sel, [&](std::string_view name, const SceneTracer& tracer) {
+        const Stopwatch sw;
+        const std::vector<Hit> hits = trace_all(tracer, set.rays, false);
+        ns += sw.ns();
+        std::size_t f = 0;
+        for (std::size_t i = 0; i < hits.size(); ++i) {
+            const Hit& a = hits[i];
+            const Hit& b = ref[i];
+            f += a.valid() != b.valid() || (a.valid() && a.t != b.t) ? 1 : 0;
+        }
+        failures += f;
+        rays += hits.size();
+        if (f > 0) {
+            who += (who.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(f);
+        }
+    });
+    std::string note = "all structures vs a box-free loop";
+    if (!who.empty()) {
+        note += "; disagreeing: " + who;
+    }
+    if (ref_misses > 0) {
+        note += "; the box-free loop itself misses " + std::to_string(ref_misses);
+    }
+    return make_row("degenerate", set.name + ", watertight " + robust_label(robust), "float", rays,
+                    failures, "disagreements", ns / static_cast<double>(rays), note);
+}
+
+/// One invalid ray set through every selected structure, robust and plain, closest and any hit,
+/// one ray at a time so a single traversal shows in the node count: none may hit or visit a node.
+Row invalid_set_row(const Scene& scene, const RaySet& set, const Selection& sel) {
+    std::size_t failures = 0, rays = 0;
+    std::uint64_t nodes = 0, started = 0;
+    for (const bool robust : {false, true}) {
+        for_each_tracer(scene, robust, sel, [&](std::string_view, const SceneTracer& tracer) {
+            for (const Rayf& r : set.rays) {
+                TraversalStats st;
+                const std::vector<Rayf> one{r};
+                const std::vector<Hit> hit = trace_all(tracer, one, false, &st);
+                TraversalStats st_any;
+                const std::vector<Hit> blocked = trace_all(tracer, one, true, &st_any);
+                const bool bad =
+                    hit[0].valid() || blocked[0].valid() || st.nodes > 0 || st_any.nodes > 0;
+                failures += bad ? 1 : 0;
+                nodes += st.nodes + st_any.nodes;
+                started += st.rays + st_any.rays;
+                ++rays;
+            }
+        });
+    }
+    return make_row("degenerate", set.name, "float", rays, failures, "traversed or hit",
+                    std::numeric_limits<double>::quiet_NaN(),
+                    "every structure, robust and plain, closest and any hit; nodes visited " +
+                        std::to_string(nodes) + ", traversals started " + std::to_string(started));
+}
+
 }  // namespace
 
 std::vector<Row> run_degenerate(const Options& opt) {
@@ -233,89 +320,14 @@ std::vector<Row> run_degenerate(const Options& opt, const Selection& sel) {
 
     std::vector<Row> rows;
     for (std::size_t s = 0; s < valid.size(); ++s) {
-        std::size_t ref_misses = 0;
-        for (const Hit& hit : refs[s]) {
-            ref_misses += hit.valid() ? 0 : 1;
-        }
         for (const bool robust : {false, true}) {
-            if (!(robust ? sel.robust : sel.plain)) {
-                continue;
+            if (robust ? sel.robust : sel.plain) {
+                rows.push_back(valid_set_row(scene, valid[s], refs[s], robust, sel));
             }
-            std::size_t failures = 0, rays = 0;
-            double ns = 0;
-            std::string who;
-            for (const AccelEntry& e : accel_registry()) {
-                if (!selected(sel, e.name, robust)) {
-                    continue;
-                }
-                TraceSetup setup;
-                setup.accel = std::string(e.name);
-                setup.methods = {"watertight"};
-                setup.robust = robust;
-                const SceneTracer tracer(scene, setup);
-                const Stopwatch sw;
-                const std::vector<Hit> hits = trace_all(tracer, valid[s].rays, false);
-                ns += sw.ns();
-                std::size_t f = 0;
-                for (std::size_t i = 0; i < hits.size(); ++i) {
-                    const Hit& a = hits[i];
-                    const Hit& b = refs[s][i];
-                    f += a.valid() != b.valid() || (a.valid() && a.t != b.t) ? 1 : 0;
-                }
-                failures += f;
-                rays += hits.size();
-                if (f > 0) {
-                    who +=
-                        (who.empty() ? "" : ", ") + std::string(e.name) + " " + std::to_string(f);
-                }
-            }
-            std::string note = "all structures vs a box-free loop";
-            if (!who.empty()) {
-                note += "; disagreeing: " + who;
-            }
-            if (ref_misses > 0) {
-                note += "; the box-free loop itself misses " + std::to_string(ref_misses);
-            }
-            rows.push_back(make_row(
-                "degenerate", valid[s].name + ", watertight " + robust_label(robust), "float", rays,
-                failures, "disagreements", ns / static_cast<double>(rays), note));
         }
     }
-
-    // Invalid rays, one at a time, so a single traversal shows in the node count.
     for (const RaySet& s : invalid) {
-        std::size_t failures = 0, rays = 0;
-        std::uint64_t nodes = 0, started = 0;
-        for (const bool robust : {false, true}) {
-            for (const AccelEntry& e : accel_registry()) {
-                if (!selected(sel, e.name, robust)) {
-                    continue;
-                }
-                TraceSetup setup;
-                setup.accel = std::string(e.name);
-                setup.methods = {"watertight"};
-                setup.robust = robust;
-                const SceneTracer tracer(scene, setup);
-                for (const Rayf& r : s.rays) {
-                    TraversalStats st;
-                    const std::vector<Rayf> one{r};
-                    const std::vector<Hit> hit = trace_all(tracer, one, false, &st);
-                    TraversalStats st_any;
-                    const std::vector<Hit> blocked = trace_all(tracer, one, true, &st_any);
-                    const bool bad =
-                        hit[0].valid() || blocked[0].valid() || st.nodes > 0 || st_any.nodes > 0;
-                    failures += bad ? 1 : 0;
-                    nodes += st.nodes + st_any.nodes;
-                    started += st.rays + st_any.rays;
-                    ++rays;
-                }
-            }
-        }
-        rows.push_back(make_row(
-            "degenerate", s.name, "float", rays, failures, "traversed or hit",
-            std::numeric_limits<double>::quiet_NaN(),
-            "every structure, robust and plain, closest and any hit; nodes visited " +
-                std::to_string(nodes) + ", traversals started " + std::to_string(started)));
+        rows.push_back(invalid_set_row(scene, s, sel));
     }
     return rows;
 }
