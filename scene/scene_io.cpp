@@ -1,57 +1,30 @@
-// Scene JSON reading and writing (format: docs/scene-format.md). Every error names the file and the
-// JSON path of the offending field; every write goes through a temporary file and a rename.
+// Scene JSON reading (format: docs/scene-format.md) and scene loading by file type. Every error
+// names the file and the JSON path of the offending field. Checks shared with validate_scene:
+// scene/scene_validate.cpp; writing: scene/scene_write.cpp.
 #include "scene/scene_io.h"
 
-#include "base/atomic_file.h"
 #include "mesh/mesh_io.h"
 #include "scene/nff_io.h"
+#include "scene/scene_json.h"
 
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <optional>
-#include <random>
 #include <set>
-#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
 
 namespace rtlab {
 
+using namespace scene_json;
+
 namespace {
-
-using Json = nlohmann::ordered_json;
-
-/// Largest accepted image side in pixels.
-constexpr int max_image_side = 16384;
-
-/// A position in the JSON document, for error messages ("objects[3].radius").
-class JsonPath {
-public:
-    JsonPath(std::string what, std::string path) : what_(std::move(what)), path_(std::move(path)) {}
-    JsonPath operator/(std::string_view key) const {
-        return {what_, path_.empty() ? std::string(key) : path_ + "." + std::string(key)};
-    }
-    JsonPath operator[](std::size_t i) const {
-        return {what_, path_ + "[" + std::to_string(i) + "]"};
-    }
-    [[noreturn]] void fail(const std::string& problem) const {
-        throw Error(what_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": " +
-                    problem);
-    }
-    const std::string& what() const { return what_; }
-
-private:
-    std::string what_;
-    std::string path_;
-};
 
 void require_object(const Json& j, const JsonPath& at) {
     if (!j.is_object()) {
@@ -126,24 +99,6 @@ std::string to_string_value(const Json& j, const JsonPath& at) {
     return j.get<std::string>();
 }
 
-void require_positive(float v, const JsonPath& at) {
-    if (!(v > 0)) {
-        at.fail("must be > 0");
-    }
-}
-
-void require_non_negative(float v, const JsonPath& at) {
-    if (!(v >= 0)) {
-        at.fail("must be >= 0");
-    }
-}
-
-void require_non_negative(const Vec3f& v, const JsonPath& at) {
-    if (!(min_component(v) >= 0)) {
-        at.fail("components must be >= 0");
-    }
-}
-
 int to_image_side(const Json& j, const JsonPath& at) {
     if (!j.is_number_integer()) {
         at.fail("must be an integer");
@@ -153,103 +108,6 @@ int to_image_side(const Json& j, const JsonPath& at) {
         at.fail("must be in 1.." + std::to_string(max_image_side));
     }
     return static_cast<int>(v);
-}
-
-// ---- validation shared by parsing and validate_scene ------------------------------------------
-
-void check_camera(const Camera& c, const JsonPath& at) {
-    if (!is_finite(c.from) || !is_finite(c.at) || !is_finite(c.up)) {
-        at.fail("non-finite vector");
-    }
-    if (!(c.fov_deg > 0 && c.fov_deg < 180)) {
-        (at / "fov_deg").fail("must be in (0, 180)");
-    }
-    if (c.width < 1 || c.width > max_image_side) {
-        (at / "width").fail("must be in 1.." + std::to_string(max_image_side));
-    }
-    if (c.height < 1 || c.height > max_image_side) {
-        (at / "height").fail("must be in 1.." + std::to_string(max_image_side));
-    }
-    const Vec3f dir = c.at - c.from;
-    if (!is_finite(dir)) {
-        (at / "at").fail("too far from 'from' for float precision ('at' - 'from' overflows)");
-    }
-    if (length_squared(dir) == 0) {
-        (at / "at").fail("must differ from 'from'");
-    }
-    if (length_squared(cross(dir, c.up)) == 0) {
-        (at / "up").fail("must not be zero or parallel to the view direction");
-    }
-    // The frame the renderer and ray generator build (trace/camera.h), in float: it must be
-    // orthonormal, or every eye ray is NaN.
-    const auto unit = [](const Vec3f& v) {
-        return is_finite(v) && std::abs(length(v) - 1.0f) < 1e-3f;
-    };
-    const Vec3f forward = normalize(dir);
-    if (!unit(forward)) {
-        (at / "at").fail(
-            "the view direction 'at' - 'from' cannot be normalised in float precision "
-            "(too long or too short)");
-    }
-    if (!unit(normalize(cross(forward, c.up)))) {
-        (at / "up").fail(
-            "cannot be used in float precision (too long, too short or nearly parallel "
-            "to the view direction)");
-    }
-}
-
-/// The camera framing the scene's bounds when the file gives none; fails naming the reason when
-/// the bounds are too large (or empty) to frame in float precision.
-Camera framing_camera(const Scene& s, const JsonPath& at) {
-    const Bounds3f b = scene_bounds(s);
-    const Camera c = camera_framing(b);
-    const Vec3f dir = c.at - c.from;
-    const Vec3f forward = normalize(dir);
-    if (!is_finite(c.from) || !is_finite(c.at) || !is_finite(forward) ||
-        std::abs(length(forward) - 1.0f) >= 1e-3f) {
-        at.fail(
-            "no camera given, and none can be framed automatically: the scene's extent "
-            "overflows float precision (add a \"camera\")");
-    }
-    return c;
-}
-
-void check_material(const Material& m, const JsonPath& at) {
-    require_non_negative(m.color, at / "color");
-    require_non_negative(m.ambient, at / "ambient");
-    require_non_negative(m.diffuse, at / "diffuse");
-    require_non_negative(m.specular, at / "specular");
-    require_non_negative(m.shininess, at / "shininess");
-    require_non_negative(m.reflect, at / "reflect");
-    require_non_negative(m.transmit, at / "transmit");
-    require_positive(m.ior, at / "ior");
-    require_non_negative(m.absorption, at / "absorption");
-    require_non_negative(m.dispersion, at / "dispersion");
-    require_non_negative(m.texture.color2, at / "texture" / "color2");
-    require_positive(m.texture.scale, at / "texture" / "scale");
-}
-
-void check_light(const Light& l, const JsonPath& at) {
-    if (!is_finite(l.position)) {
-        at.fail("non-finite vector");
-    }
-    if (l.kind == LightKind::directional && length_squared(l.position) == 0) {
-        (at / "direction").fail("must not be zero");
-    }
-    require_non_negative(l.color, at / "color");
-}
-
-void check_material_index(std::uint32_t m, const Scene& s, const JsonPath& at) {
-    if (m >= s.materials.size()) {
-        (at / "material").fail("material index out of range");
-    }
-}
-
-void check_object(const Scene& s, ObjectRef r, const JsonPath& at) {
-    visit_object(s, r, [&]<class P>(const auto& o) {
-        P::check(o, at);
-        check_material_index(o.material, s, at);
-    });
 }
 
 // ---- parsing ----------------------------------------------------------------------------------
@@ -434,138 +292,7 @@ std::string read_text(const std::filesystem::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// ---- writing ----------------------------------------------------------------------------------
-
-/// A float as the double whose shortest decimal form reads back as the same float, so files show
-/// "0.8" rather than "0.800000011920929" and still round-trip exactly.
-double tidy(float f) {
-    char buf[32];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), f);
-    double d = static_cast<double>(f);
-    if (ec == std::errc()) {
-        std::from_chars(buf, end, d);
-    }
-    return d;
-}
-
-Json vec_json(const Vec3f& v) {
-    return Json::array({tidy(v.x), tidy(v.y), tidy(v.z)});
-}
-
-/// What a table entry's `write` sees of one object being written: JSON fields in call order,
-/// and the mesh files beside the scene file.
-class ObjectWriter {
-public:
-    ObjectWriter(const std::filesystem::path& scene_path, bool write_meshes, std::uint32_t index)
-        : scene_path_(scene_path), write_meshes_(write_meshes), index_(index) {}
-    /// Field `key` = v.
-    void vec3(std::string_view key, const Vec3f& v) { j_[std::string(key)] = vec_json(v); }
-    /// Field `key` = f (shortest decimal form).
-    void number(std::string_view key, float f) { j_[std::string(key)] = tidy(f); }
-    /// Field `key` = text.
-    void string(std::string_view key, const std::string& text) { j_[std::string(key)] = text; }
-    /// Field `key` = array of vectors.
-    void vec3_array(std::string_view key, const std::vector<Vec3f>& vs) {
-        Json a = Json::array();
-        for (const Vec3f& v : vs) {
-            a.push_back(vec_json(v));
-        }
-        j_[std::string(key)] = a;
-    }
-    /// File name a mesh is referenced by: written beside the scene file as
-    /// "<stem>.mesh<index>.ply" with write_meshes, else its own `file` (which must be non-empty).
-    std::string external_mesh(const TriangleMesh& mesh, const std::string& file) const {
-        if (write_meshes_) {
-            const std::string name =
-                scene_path_.stem().string() + ".mesh" + std::to_string(index_) + ".ply";
-            save_mesh(mesh, scene_path_.parent_path() / name);
-            return name;
-        }
-        if (file.empty()) {
-            throw Error(scene_path_.string() + ": meshes[" + std::to_string(index_) +
-                        "] has no file name; save with write_meshes");
-        }
-        return file;
-    }
-    /// The object written so far.
-    const Json& json() const { return j_; }
-
-private:
-    Json j_ = Json::object();
-    const std::filesystem::path& scene_path_;
-    bool write_meshes_;
-    std::uint32_t index_;
-};
-
 }  // namespace
-
-Camera camera_framing(const Bounds3f& b, float fov_deg, int width, int height) {
-    Camera c;
-    c.fov_deg = fov_deg;
-    c.width = width;
-    c.height = height;
-    if (b.empty()) {
-        return c;
-    }
-    const Vec3f center = b.center();
-    float radius = 0.5f * length(b.diagonal());
-    if (!(radius > 0)) {
-        radius = 1;
-    }
-    // The bounding sphere fits the vertical field of view (and the horizontal one when wider).
-    const float half = 0.5f * fov_deg * std::numbers::pi_v<float> / 180.0f;
-    const float distance = radius / std::sin(half);
-    c.at = center;
-    c.from = center + Vec3f{0, 0, distance};
-    c.up = {0, 1, 0};
-    return c;
-}
-
-void validate_scene(const Scene& s, std::string_view what) {
-    const JsonPath root(std::string(what), "");
-    check_camera(s.camera, root / "camera");
-    if (!is_finite(s.background) || !(min_component(s.background) >= 0)) {
-        (root / "background").fail("components must be finite and >= 0");
-    }
-    for (std::size_t i = 0; i < s.lights.size(); ++i) {
-        check_light(s.lights[i], (root / "lights")[i]);
-    }
-    std::set<std::string> names;
-    for (const Material& m : s.materials) {
-        if (!names.insert(m.name).second) {
-            (root / "materials" / m.name).fail("duplicate material name");
-        }
-        check_material(m, root / "materials" / m.name);
-    }
-    std::size_t sizes[prim_type_count] = {};
-    for_each_type<PrimTypes>(
-        [&]<class P>() { sizes[static_cast<std::size_t>(prim_type_v<P>)] = P::objects(s).size(); });
-    std::size_t total = 0;
-    for (const std::size_t n : sizes) {
-        total += n;
-    }
-    std::vector<std::vector<bool>> seen(prim_type_count);
-    for (std::size_t t = 0; t < prim_type_count; ++t) {
-        seen[t].assign(sizes[t], false);
-    }
-    if (s.order.size() != total) {
-        (root / "objects")
-            .fail("order lists " + std::to_string(s.order.size()) + " objects, sets hold " +
-                  std::to_string(total));
-    }
-    for (std::size_t i = 0; i < s.order.size(); ++i) {
-        const ObjectRef r = s.order[i];
-        const auto t = static_cast<std::size_t>(r.type);
-        if (t >= prim_type_count || r.index >= sizes[t] || seen[t][r.index]) {
-            (root / "objects")[i].fail("bad or repeated object reference");
-        }
-        seen[t][r.index] = true;
-        check_object(s, r, (root / "objects")[i]);
-    }
-    if (primitive_id_base(s).back() == 0xFFFFFFFFu) {
-        root.fail("too many primitives for 32-bit ids");
-    }
-}
 
 namespace {
 
@@ -715,53 +442,6 @@ Scene load_scene(const std::filesystem::path& path) {
     }
     const std::string text = read_text(path);
     return parse_scene(text, path.parent_path(), path.string());
-}
-
-void save_scene(const Scene& s, const std::filesystem::path& path, bool write_meshes) {
-    validate_scene(s, path.string());
-    Json doc;
-    doc["camera"] = Json{{"from", vec_json(s.camera.from)}, {"at", vec_json(s.camera.at)},
-                         {"up", vec_json(s.camera.up)},     {"fov_deg", tidy(s.camera.fov_deg)},
-                         {"width", s.camera.width},         {"height", s.camera.height}};
-    doc["background"] = vec_json(s.background);
-    doc["lights"] = Json::array();
-    for (const Light& l : s.lights) {
-        const bool point = l.kind == LightKind::point;
-        doc["lights"].push_back(Json{{"type", point ? "point" : "directional"},
-                                     {point ? "position" : "direction", vec_json(l.position)},
-                                     {"color", vec_json(l.color)}});
-    }
-    doc["materials"] = Json::object();
-    for (const Material& m : s.materials) {
-        Json jm{{"color", vec_json(m.color)},
-                {"ambient", tidy(m.ambient)},
-                {"diffuse", tidy(m.diffuse)},
-                {"specular", tidy(m.specular)},
-                {"shininess", tidy(m.shininess)},
-                {"reflect", tidy(m.reflect)},
-                {"transmit", tidy(m.transmit)},
-                {"ior", tidy(m.ior)},
-                {"fresnel", m.fresnel},
-                {"absorption", vec_json(m.absorption)},
-                {"dispersion", tidy(m.dispersion)}};
-        if (m.texture.kind != TextureKind::none) {
-            jm["texture"] = Json{{"type", "checker"},
-                                 {"color2", vec_json(m.texture.color2)},
-                                 {"scale", tidy(m.texture.scale)}};
-        }
-        doc["materials"][m.name] = jm;
-    }
-    doc["objects"] = Json::array();
-    for (const ObjectRef& r : s.order) {
-        ObjectWriter out(path, write_meshes, r.index);
-        out.string("type", std::string(to_string(r.type)));
-        visit_object(s, r, [&]<class P>(const auto& o) {
-            P::write(o, out);
-            out.string("material", s.materials[o.material].name);
-        });
-        doc["objects"].push_back(out.json());
-    }
-    write_file_atomically(path, doc.dump(2) + "\n");  // base/atomic_file.h
 }
 
 }  // namespace rtlab
