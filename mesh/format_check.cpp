@@ -118,25 +118,30 @@ DeclaredCounts check_obj(std::string_view bytes, const std::string& what) {
 
 // ---- OFF ----------------------------------------------------------------------------------------
 
-DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
-    reject_binary_text(bytes, what, "OFF");
-    // OpenMesh's OFF reader misreads comment lines (it returns an empty or garbled mesh).
-    if (bytes.find('#') != std::string_view::npos) {
-        fail(what, "comments ('#') in OFF files are not supported");
-    }
-    LineReader lines(bytes);
-    std::string_view line;
-    // Next non-empty, non-comment line as tokens; empty at end of file.
-    auto next_tokens = [&]() {
-        while (lines.next(line)) {
+/// The tokens of each next non-empty line (none at the end of the file), with its line number.
+class TokenLines {
+public:
+    explicit TokenLines(std::string_view bytes) : lines_(bytes) {}
+    std::vector<std::string_view> next() {
+        std::string_view line;
+        while (lines_.next(line)) {
             std::vector<std::string_view> tok = tokens_of(line);
             if (!tok.empty()) {
                 return tok;
             }
         }
-        return std::vector<std::string_view>{};
-    };
-    std::vector<std::string_view> tok = next_tokens();
+        return {};
+    }
+    std::size_t number() const { return lines_.number(); }
+
+private:
+    LineReader lines_;
+};
+
+/// The first line of an OFF file (tokens tok, at line `line`): plain 3-D ASCII "OFF" alone.
+void check_off_magic(const std::vector<std::string_view>& tok,
+                     std::size_t line,
+                     const std::string& what) {
     if (tok.empty()) {
         fail(what, "empty file");
     }
@@ -161,10 +166,13 @@ DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
     // so counts there would be read from the wrong place (found by fuzzing:
     // tests/fuzz_regressions/off-counts-on-header-line.off, an endless read).
     if (tok.size() > 1) {
-        fail(what, "line " + std::to_string(lines.number()) +
+        fail(what, "line " + std::to_string(line) +
                        ": text after 'OFF' (the counts must be on their own line)");
     }
-    tok = next_tokens();
+}
+
+/// The vertex and face counts of an OFF file's second line (tokens tok).
+DeclaredCounts off_counts(const std::vector<std::string_view>& tok, const std::string& what) {
     if (tok.size() < 2) {
         fail(what, "header needs vertex and face counts");
     }
@@ -174,9 +182,43 @@ DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
         static_cast<std::uint64_t>(*nf) > max_count) {
         fail(what, "bad counts in header");
     }
-    DeclaredCounts c{static_cast<std::size_t>(*nv), static_cast<std::size_t>(*nf), true};
+    return {static_cast<std::size_t>(*nv), static_cast<std::size_t>(*nf), true};
+}
+
+/// One OFF face line (tokens tok, at `where`): a count of at least 3, then that many indices
+/// below `vertices`.
+void check_off_face(const std::vector<std::string_view>& tok,
+                    const std::string& where,
+                    std::size_t vertices,
+                    const std::string& what) {
+    const std::optional<std::int64_t> n = parse_int(tok[0]);
+    if (!n || *n < 3) {
+        fail(what, where + ": face needs a vertex count of at least 3");
+    }
+    if (tok.size() < static_cast<std::size_t>(*n) + 1) {
+        fail(what, where + ": face lists fewer than " + std::to_string(*n) + " vertices");
+    }
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(*n); ++k) {
+        const std::optional<std::int64_t> idx = parse_int(tok[k]);
+        if (!idx || *idx < 0 || static_cast<std::size_t>(*idx) >= vertices) {
+            fail(what, where + ": face vertex index '" + std::string(tok[k]) + "' out of range (" +
+                           std::to_string(vertices) + " vertices)");
+        }
+    }
+}
+
+DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
+    reject_binary_text(bytes, what, "OFF");
+    // OpenMesh's OFF reader misreads comment lines (it returns an empty or garbled mesh).
+    if (bytes.find('#') != std::string_view::npos) {
+        fail(what, "comments ('#') in OFF files are not supported");
+    }
+    TokenLines lines(bytes);
+    std::vector<std::string_view> tok = lines.next();
+    check_off_magic(tok, lines.number(), what);
+    const DeclaredCounts c = off_counts(lines.next(), what);
     for (std::size_t i = 0; i < c.vertices; ++i) {
-        tok = next_tokens();
+        tok = lines.next();
         if (tok.empty()) {
             fail(what, "truncated: file ends after " + std::to_string(i) + " of " +
                            std::to_string(c.vertices) + " vertices");
@@ -190,26 +232,12 @@ DeclaredCounts check_off(std::string_view bytes, const std::string& what) {
         }
     }
     for (std::size_t i = 0; i < c.faces; ++i) {
-        tok = next_tokens();
+        tok = lines.next();
         if (tok.empty()) {
             fail(what, "truncated: file ends after " + std::to_string(i) + " of " +
                            std::to_string(c.faces) + " faces");
         }
-        const std::string where = line_at(lines.number());
-        const std::optional<std::int64_t> n = parse_int(tok[0]);
-        if (!n || *n < 3) {
-            fail(what, where + ": face needs a vertex count of at least 3");
-        }
-        if (tok.size() < static_cast<std::size_t>(*n) + 1) {
-            fail(what, where + ": face lists fewer than " + std::to_string(*n) + " vertices");
-        }
-        for (std::size_t k = 1; k <= static_cast<std::size_t>(*n); ++k) {
-            const std::optional<std::int64_t> idx = parse_int(tok[k]);
-            if (!idx || *idx < 0 || static_cast<std::size_t>(*idx) >= c.vertices) {
-                fail(what, where + ": face vertex index '" + std::string(tok[k]) +
-                               "' out of range (" + std::to_string(c.vertices) + " vertices)");
-            }
-        }
+        check_off_face(tok, line_at(lines.number()), c.vertices, what);
     }
     return c;
 }
