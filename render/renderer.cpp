@@ -153,29 +153,28 @@ FresnelForm parse_fresnel(std::string_view name) {
                                 "' (known: exact, schlick)");
 }
 
-RenderPlan plan_render(const Scene& s, const RenderSettings& r) {
-    check_settings(r);
-    RenderPlan p;
-    p.features = features(s);
-    const SceneFeatures& f = p.features;
-    const std::vector<bool> used = used_materials(s);
-    const bool all = r.all_features;
-    const bool colour = r.aov == Aov::color;
-    p.shadows = colour && (all || f.shadows);
-    p.reflection = colour && (all || f.reflection || f.refraction);
-    p.refraction = colour && (all || f.refraction);
-    p.textures = colour && (all || f.textures);
-    p.spectral = colour && p.refraction && r.spectral.value_or(f.dispersion);
+namespace {
 
+/// One reason per primitive type: whether the scene has such objects (a structure is built).
+void primitive_reasons(const Scene& s, RenderPlan& p) {
     for (std::size_t t = 0; t < prim_type_count; ++t) {
         const auto type = static_cast<PrimType>(t);
         const std::size_t n = object_count(s, type);
-        p.reasons.push_back({std::string(to_string(type)), f.prims[t],
+        p.reasons.push_back({std::string(to_string(type)), p.features.prims[t],
                              n > 0 ? std::to_string(n) + " " + std::string(to_string(type)) +
                                          " object(s): a structure is built and traversed"
                                    : "no " + std::string(to_string(type)) +
                                          " objects: no structure, no intersection code runs"});
     }
+}
+
+/// One reason per shading feature: on or off in the scene and why, and whether its code path is
+/// compiled into the instance that runs.
+void feature_reasons(const Scene& s, const RenderSettings& r, RenderPlan& p) {
+    const SceneFeatures& f = p.features;
+    const std::vector<bool> used = used_materials(s);
+    const bool all = r.all_features;
+    const bool colour = r.aov == Aov::color;
     // `compiled`: the code path holding this feature is in the instance that runs. Features
     // with their own template flag say why they are compiled although off; the lighter ones
     // (fresnel, absorption, dispersion) are run-time checks inside the reflection/refraction path.
@@ -236,7 +235,25 @@ RenderPlan plan_render(const Scene& s, const RenderSettings& r) {
                        [](const Material& m) { return m.texture.kind != TextureKind::none; }) +
             " has a checker texture",
         "no used material has a texture: plain colours");
+}
 
+}  // namespace
+
+RenderPlan plan_render(const Scene& s, const RenderSettings& r) {
+    check_settings(r);
+    RenderPlan p;
+    p.features = features(s);
+    const SceneFeatures& f = p.features;
+    const bool all = r.all_features;
+    const bool colour = r.aov == Aov::color;
+    p.shadows = colour && (all || f.shadows);
+    p.reflection = colour && (all || f.reflection || f.refraction);
+    p.refraction = colour && (all || f.refraction);
+    p.textures = colour && (all || f.textures);
+    p.spectral = colour && p.refraction && r.spectral.value_or(f.dispersion);
+
+    primitive_reasons(s, p);
+    feature_reasons(s, r, p);
     const auto flag = [](bool on, const char* name) { return on ? std::string(name) : "-"; };
     p.instantiation = colour ? "trace_paths<" + flag(p.shadows, "shadows") + ", " +
                                    flag(p.reflection, "reflection") + ", " +
