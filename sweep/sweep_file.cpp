@@ -196,7 +196,10 @@ std::vector<std::string> expand_structure(const ojson& entry, const std::string&
     return out;
 }
 
-SweepFile load_sweep_file(const std::filesystem::path& file) {
+namespace {
+
+/// The sweep file's JSON (comments allowed): an object with known top-level keys only.
+ojson read_sweep_json(const std::filesystem::path& file) {
     const std::string where = file.string();
     std::ifstream in(file);
     if (!in) {
@@ -218,21 +221,16 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
             fail(where + ": " + k, "unknown key (see docs/sweeps.md)");
         }
     }
-    std::filesystem::path base = std::filesystem::absolute(file).parent_path();
-    if (j.contains("base_dir")) {
-        base = get_string(j["base_dir"], where + ": base_dir");
-    } else {
-        j["base_dir"] = base.lexically_normal().string();
-    }
-    SweepFile s;
-    s.normalized = j;
+    return j;
+}
+
+/// The sweep's axes from j: scenes (each once; files relative to base), structure specs
+/// (parameter lists expanded) and method lists.
+void parse_sweep_axes(const ojson& j,
+                      const std::string& where,
+                      const std::filesystem::path& base,
+                      SweepFile& s) {
     const auto at = [&](const std::string& k) { return where + ": " + k; };
-    if (j.contains("name")) {
-        s.name = get_string(j["name"], at("name"));
-    }
-    if (j.contains("seed")) {
-        s.seed = static_cast<std::uint64_t>(get_int(j["seed"], at("seed"), 0, INT64_MAX));
-    }
     if (!j.contains("scenes") || !j["scenes"].is_array() || j["scenes"].empty()) {
         fail(at("scenes"), "a non-empty list of scenes is required");
     }
@@ -261,7 +259,11 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
     if (s.methods.empty()) {
         fail(at("methods"), "an empty list");
     }
-    parse_rays(j.value("rays", ojson::object()), where, s);
+}
+
+/// The sweep's run options from j: threads, repeat, warm-up, stats, robust, renders, cross-checks.
+void parse_sweep_options(const ojson& j, const std::string& where, SweepFile& s) {
+    const auto at = [&](const std::string& k) { return where + ": " + k; };
     if (j.contains("threads")) {
         s.threads.clear();
         for (const ojson& t : as_list(j["threads"])) {
@@ -289,6 +291,30 @@ SweepFile load_sweep_file(const std::filesystem::path& file) {
     if (j.contains("crosscheck")) {
         s.crosschecks = parse_crosschecks(j["crosscheck"], at("crosscheck"));
     }
+}
+
+}  // namespace
+
+SweepFile load_sweep_file(const std::filesystem::path& file) {
+    const std::string where = file.string();
+    ojson j = read_sweep_json(file);
+    std::filesystem::path base = std::filesystem::absolute(file).parent_path();
+    if (j.contains("base_dir")) {
+        base = get_string(j["base_dir"], where + ": base_dir");
+    } else {
+        j["base_dir"] = base.lexically_normal().string();
+    }
+    SweepFile s;
+    s.normalized = j;
+    if (j.contains("name")) {
+        s.name = get_string(j["name"], where + ": name");
+    }
+    if (j.contains("seed")) {
+        s.seed = static_cast<std::uint64_t>(get_int(j["seed"], where + ": seed", 0, INT64_MAX));
+    }
+    parse_sweep_axes(j, where, base, s);
+    parse_rays(j.value("rays", ojson::object()), where, s);
+    parse_sweep_options(j, where, s);
     return s;
 }
 
