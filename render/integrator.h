@@ -177,6 +177,100 @@ void resolve_shadows(const TraceContext& c,
     }
 }
 
+/// The direct light at hit sp of `path` (material m, surface colour `color`, path weight w): per
+/// light that the surface faces, the diffuse and specular term as a shadow ray to resolve.
+inline void light_shadow_rays(const TraceContext& c,
+                              const Path& path,
+                              const SurfacePoint& sp,
+                              const Material& m,
+                              const Vec3f& color,
+                              const Vec3f& w,
+                              std::vector<ShadowPath>& shadows) {
+    const Vec3f view = -path.ray.dir;
+    const Vec3f org = offset_origin(sp.p, sp.n, c.offset, c.epsilon);
+    for (const Light& light : c.scene.lights) {
+        Vec3f to_light = light.position;
+        float dist = std::numeric_limits<float>::infinity();
+        if (light.kind == LightKind::point) {
+            to_light = light.position - org;
+            dist = length(to_light);
+            if (!(dist > 0)) {
+                continue;
+            }
+        }
+        const Vec3f l = normalize(to_light);
+        const float n_dot_l = dot(sp.n, l);
+        if (n_dot_l <= 0) {
+            continue;  // the surface faces away: no shadow ray
+        }
+        Vec3f term = color * (m.diffuse * n_dot_l);
+        if (m.specular > 0) {
+            const float r_dot_v = dot(reflect(-l, sp.n), view);
+            if (r_dot_v > 0) {
+                const float s = m.specular * std::pow(r_dot_v, m.shininess);
+                term += Vec3f{s, s, s};
+            }
+        }
+        const Vec3f contribution = w * light.color * term;
+        if (max_component(contribution) <= 0) {
+            continue;
+        }
+        shadows.push_back({Rayf{org, l, 0.0f, dist}, contribution, path.slot});
+    }
+}
+
+/// The mirror ray (and with Refraction the refracted one) that `path` spawns at hit sp of
+/// material m with path weight w, weighted as trace_paths describes; none at c.max_depth.
+template <bool Refraction>
+void secondary_rays(const TraceContext& c,
+                    const Path& path,
+                    const SurfacePoint& sp,
+                    const Material& m,
+                    const Vec3f& w,
+                    std::vector<Path>& next) {
+    if (path.depth >= c.max_depth) {
+        return;
+    }
+    const Vec3f d = path.ray.dir;
+    const float cos_i = std::min(1.0f, -dot(d, sp.n));
+    float w_r = m.reflect;
+    float w_t = 0;
+    std::optional<Vec3f> t_dir;
+    float ior = m.ior;
+    if constexpr (Refraction) {
+        if (m.transmit > 0) {
+            if (path.lambda_nm > 0 && m.dispersion > 0) {
+                ior = cauchy_ior(m.ior, m.dispersion, path.lambda_nm);
+            }
+            const float eta_i = sp.front_face ? 1.0f : ior;
+            const float eta_t = sp.front_face ? ior : 1.0f;
+            t_dir = refract(d, sp.n, eta_i / eta_t);
+            if (m.fresnel) {
+                const float r = fresnel(c.fresnel, cos_i, eta_i, eta_t);
+                w_r = m.reflect + m.transmit * r;
+                w_t = t_dir ? m.transmit * (1.0f - r) : 0.0f;
+            } else {
+                w_t = t_dir ? m.transmit : 0.0f;
+            }
+        }
+    }
+    if (m.fresnel && m.transmit <= 0 && w_r > 0) {
+        w_r *= fresnel(c.fresnel, cos_i, 1.0f, ior);
+    }
+    if (w_r > 0) {
+        const Rayf r{offset_origin(sp.p, sp.n, c.offset, c.epsilon), normalize(reflect(d, sp.n))};
+        next.push_back(
+            {r, w * w_r, path.slot, path.lambda_nm, path.depth + 1, PathKind::reflected});
+    }
+    if constexpr (Refraction) {
+        if (w_t > 0 && t_dir) {
+            const Rayf r{offset_origin(sp.p, -sp.n, c.offset, c.epsilon), normalize(*t_dir)};
+            next.push_back(
+                {r, w * w_t, path.slot, path.lambda_nm, path.depth + 1, PathKind::refracted});
+        }
+    }
+}
+
 /// Traces `paths` and everything they spawn, adding radiance to `accum`. Shadows: lights exist
 /// (diffuse and specular terms, shadow rays). Reflection: mirror rays (also compiled when
 /// Refraction is on, for Fresnel reflection and total internal reflection). Refraction: Snell
@@ -248,83 +342,10 @@ void trace_paths(const TraceContext& c,
             add(accum, path.slot, w * color * m.ambient);
 
             if constexpr (Shadows) {
-                const Vec3f view = -path.ray.dir;
-                const Vec3f org = offset_origin(sp.p, sp.n, c.offset, c.epsilon);
-                for (const Light& light : scene.lights) {
-                    Vec3f to_light = light.position;
-                    float dist = std::numeric_limits<float>::infinity();
-                    if (light.kind == LightKind::point) {
-                        to_light = light.position - org;
-                        dist = length(to_light);
-                        if (!(dist > 0)) {
-                            continue;
-                        }
-                    }
-                    const Vec3f l = normalize(to_light);
-                    const float n_dot_l = dot(sp.n, l);
-                    if (n_dot_l <= 0) {
-                        continue;  // the surface faces away: no shadow ray
-                    }
-                    Vec3f term = color * (m.diffuse * n_dot_l);
-                    if (m.specular > 0) {
-                        const float r_dot_v = dot(reflect(-l, sp.n), view);
-                        if (r_dot_v > 0) {
-                            const float s = m.specular * std::pow(r_dot_v, m.shininess);
-                            term += Vec3f{s, s, s};
-                        }
-                    }
-                    const Vec3f contribution = w * light.color * term;
-                    if (max_component(contribution) <= 0) {
-                        continue;
-                    }
-                    shadows.push_back({Rayf{org, l, 0.0f, dist}, contribution, path.slot});
-                }
+                light_shadow_rays(c, path, sp, m, color, w, shadows);
             }
-
             if constexpr (Reflect) {
-                if (path.depth >= c.max_depth) {
-                    continue;
-                }
-                const Vec3f d = path.ray.dir;
-                const float cos_i = std::min(1.0f, -dot(d, sp.n));
-                float w_r = m.reflect;
-                float w_t = 0;
-                std::optional<Vec3f> t_dir;
-                float ior = m.ior;
-                if constexpr (Refraction) {
-                    if (m.transmit > 0) {
-                        if (path.lambda_nm > 0 && m.dispersion > 0) {
-                            ior = cauchy_ior(m.ior, m.dispersion, path.lambda_nm);
-                        }
-                        const float eta_i = sp.front_face ? 1.0f : ior;
-                        const float eta_t = sp.front_face ? ior : 1.0f;
-                        t_dir = refract(d, sp.n, eta_i / eta_t);
-                        if (m.fresnel) {
-                            const float r = fresnel(c.fresnel, cos_i, eta_i, eta_t);
-                            w_r = m.reflect + m.transmit * r;
-                            w_t = t_dir ? m.transmit * (1.0f - r) : 0.0f;
-                        } else {
-                            w_t = t_dir ? m.transmit : 0.0f;
-                        }
-                    }
-                }
-                if (m.fresnel && m.transmit <= 0 && w_r > 0) {
-                    w_r *= fresnel(c.fresnel, cos_i, 1.0f, ior);
-                }
-                if (w_r > 0) {
-                    const Rayf r{offset_origin(sp.p, sp.n, c.offset, c.epsilon),
-                                 normalize(reflect(d, sp.n))};
-                    next.push_back({r, w * w_r, path.slot, path.lambda_nm, path.depth + 1,
-                                    PathKind::reflected});
-                }
-                if constexpr (Refraction) {
-                    if (w_t > 0 && t_dir) {
-                        const Rayf r{offset_origin(sp.p, -sp.n, c.offset, c.epsilon),
-                                     normalize(*t_dir)};
-                        next.push_back({r, w * w_t, path.slot, path.lambda_nm, path.depth + 1,
-                                        PathKind::refracted});
-                    }
-                }
+                secondary_rays<Refraction>(c, path, sp, m, w, next);
             }
         }
         if constexpr (Shadows) {
