@@ -1,12 +1,11 @@
 // Uniform grid builder. Resolution after Woo (Graphics Gems IV, "Ray tracing polygons using
 // spatial subdivision", 1992 / Cleary & Wyvill 1988): res_i = d_i * cbrt(lambda N / V), clamped
 // to [1, max_res]; axes of zero extent get one cell and the rule runs over the others. Two passes
-// (count, then fill) give the CSR arrays. Epsilon policy: each primitive box is widened by
-// 1e-4 cell + 4 ulp of the grid's coordinates before it is mapped to cells, so a primitive
-// touching a cell face is also listed in the neighbour that the DDA's rounded entry point or
-// crossing times may select. Cost: O(N + references + cells); the references (and their clipping,
-// the expensive part) are gathered in parallel with TBB, deterministically.
+// (count, then fill) give the CSR arrays. Boxes are padded before they are mapped to cells as
+// accel/grid/cell_map.h says. Cost: O(N + references + cells); the references (and their
+// clipping, the expensive part) are gathered in parallel with TBB, deterministically.
 
+#include "accel/grid/cell_map.h"
 #include "accel/grid/cell_refs.h"
 #include "accel/grid/grid.h"
 #include "base/thread_arena.h"
@@ -38,27 +37,8 @@ Grid build(const BuildInput& in, const GridConfig& cfg) {
     }
     static_cast<GridFrame&>(g) =
         GridFrame::over(g.box, woo_resolution(g.box, present, cfg.density, cfg.max_res));
-    Vec3f pad;
-    for (std::size_t a = 0; a < 3; ++a) {
-        const float mag = std::max(std::abs(g.box.lo[a]), std::abs(g.box.hi[a]));
-        pad[a] = 1e-4f * g.cell_size[a] + 4.0f * std::numeric_limits<float>::epsilon() * mag;
-    }
+    const CellMapper map(g);
 
-    // The cell range a (padded) box overlaps along axis a.
-    const auto cell_of = [&](float x, std::size_t a) {
-        const float c = std::floor((x - g.box.lo[a]) * g.inv_cell_size[a]);
-        const auto last = static_cast<float>(g.res[a] - 1);
-        return static_cast<std::uint32_t>(std::clamp(c, 0.0f, last));
-    };
-    const auto cell_box = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-        const std::array<std::uint32_t, 3> c{x, y, z};
-        Bounds3f b;
-        for (std::size_t a = 0; a < 3; ++a) {
-            b.lo[a] = g.box.lo[a] + static_cast<float>(c[a]) * g.cell_size[a] - pad[a];
-            b.hi[a] = g.box.lo[a] + static_cast<float>(c[a] + 1) * g.cell_size[a] + pad[a];
-        }
-        return b;
-    };
     // Calls fn(cell index) for every cell primitive id overlaps (its clipped part, when
     // use_clip); returns the number of cells.
     const auto overlap = [&](std::uint32_t id, bool use_clip, auto&& fn) {
@@ -66,13 +46,13 @@ Grid build(const BuildInput& in, const GridConfig& cfg) {
         const Bounds3f& b = in.bounds[id];
         std::array<std::uint32_t, 3> lo{}, hi{};
         for (std::size_t a = 0; a < 3; ++a) {
-            lo[a] = cell_of(b.lo[a] - pad[a], a);
-            hi[a] = cell_of(b.hi[a] + pad[a], a);
+            lo[a] = map.cell_of(b.lo[a] - map.pad[a], a);
+            hi[a] = map.cell_of(b.hi[a] + map.pad[a], a);
         }
         for (std::uint32_t z = lo[2]; z <= hi[2]; ++z) {
             for (std::uint32_t y = lo[1]; y <= hi[1]; ++y) {
                 for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {
-                    if (use_clip && !is_usable_box(in.clip(id, cell_box(x, y, z)))) {
+                    if (use_clip && !is_usable_box(in.clip(id, map.cell_box(x, y, z)))) {
                         continue;
                     }
                     fn(x + g.res[0] * (static_cast<std::size_t>(y) +
@@ -89,7 +69,7 @@ Grid build(const BuildInput& in, const GridConfig& cfg) {
     const auto one_cell = [&](std::uint32_t id) {
         const Bounds3f& b = in.bounds[id];
         for (std::size_t a = 0; a < 3; ++a) {
-            if (cell_of(b.lo[a] - pad[a], a) != cell_of(b.hi[a] + pad[a], a)) {
+            if (map.cell_of(b.lo[a] - map.pad[a], a) != map.cell_of(b.hi[a] + map.pad[a], a)) {
                 return false;
             }
         }
