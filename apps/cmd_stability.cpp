@@ -40,6 +40,80 @@ struct StabilityArgs {
 /// release build): about 560 B/ray.
 constexpr std::uint64_t stability_bytes_per_ray = 1024;
 
+/// --fixture: the closed perturbed sphere and the rays from inside it, written to dir.
+void write_fixture(const std::filesystem::path& dir, const stab::Options& opt) {
+    std::filesystem::create_directories(dir);
+    const TriangleMesh mesh = stab::watertight_sphere(opt.seed);
+    save_mesh(mesh, dir / "sphere.ply");
+    save_rays(dir / "inside.rays", stab::inside_rays(mesh, opt.rays, opt.seed));
+    std::cerr << fmt::format(
+        "rtlab stability: wrote {} (closed perturbed sphere, {} triangles) and {} ({} rays "
+        "from inside; every one must hit)\n",
+        (dir / "sphere.ply").string(), mesh.triangle_count(), (dir / "inside.rays").string(),
+        opt.rays);
+}
+
+/// The cases --case names (comma-separated; all when empty), or an Error naming the known ones.
+std::vector<const stab::Case*> selected_cases(const std::string& names) {
+    std::vector<const stab::Case*> selected;
+    if (names.empty()) {
+        for (const stab::Case& c : stab::cases()) {
+            selected.push_back(&c);
+        }
+        return selected;
+    }
+    for (const std::string& name : split_commas(names)) {
+        const stab::Case* c = stab::find_case(name);
+        if (c == nullptr) {
+            std::string known;
+            for (const stab::Case& k : stab::cases()) {
+                known += (known.empty() ? "" : ", ") + std::string(k.name);
+            }
+            throw Error("unknown stability case '" + name + "' (known: " + known + ")");
+        }
+        selected.push_back(c);
+    }
+    return selected;
+}
+
+/// The report's header: the command that reproduces it, revision, compiler and CPU.
+stab::ReportHeader report_header(const StabilityArgs& a, const stab::Options& opt) {
+    stab::ReportHeader header;
+    header.command = fmt::format("rtlab stability --rays {} --seed {}", opt.rays, opt.seed);
+    if (!a.cases.empty()) {
+        header.command += " --case " + a.cases;
+    }
+    const char* rev = std::getenv("RTLAB_GIT_REVISION");
+    header.revision = rev != nullptr && *rev != '\0' ? rev : "unknown";
+    header.compiler = stab::compiler_description();
+    header.cpu = stab::cpu_description();
+    header.options = opt;
+    return header;
+}
+
+/// Case i of n run with progress on stderr; adds its failures to total_failures.
+stab::CaseResult run_case(const stab::Case& c,
+                          std::size_t i,
+                          std::size_t n,
+                          const stab::Options& opt,
+                          std::size_t& total_failures) {
+    std::cerr << fmt::format("rtlab stability: [{}/{}] {} ...\n", i + 1, n, c.name);
+    const auto t0 = std::chrono::steady_clock::now();
+    stab::CaseResult r;
+    r.name = std::string(c.name);
+    r.description = std::string(c.description);
+    r.rows = c.run(opt);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::size_t failures = 0;
+    for (const stab::Row& row : r.rows) {
+        failures += row.failures;
+    }
+    total_failures += failures;
+    std::cerr << fmt::format("rtlab stability: [{}/{}] {}: {} rows, {} failures, {:.1f} s\n", i + 1,
+                             n, c.name, r.rows.size(), failures, r.seconds);
+    return r;
+}
+
 int run_stability(const StabilityArgs& a) {
     if (a.list) {
         for (const stab::Case& c : stab::cases()) {
@@ -59,70 +133,15 @@ int run_stability(const StabilityArgs& a) {
     opt.rays = a.rays;
     opt.seed = a.seed;
     if (!a.fixture.empty()) {
-        const std::filesystem::path dir(a.fixture);
-        std::filesystem::create_directories(dir);
-        const TriangleMesh mesh = stab::watertight_sphere(opt.seed);
-        save_mesh(mesh, dir / "sphere.ply");
-        save_rays(dir / "inside.rays", stab::inside_rays(mesh, opt.rays, opt.seed));
-        std::cerr << fmt::format(
-            "rtlab stability: wrote {} (closed perturbed sphere, {} triangles) and {} ({} rays "
-            "from inside; every one must hit)\n",
-            (dir / "sphere.ply").string(), mesh.triangle_count(), (dir / "inside.rays").string(),
-            opt.rays);
+        write_fixture(a.fixture, opt);
         return 0;
     }
-
-    std::vector<const stab::Case*> selected;
-    if (a.cases.empty()) {
-        for (const stab::Case& c : stab::cases()) {
-            selected.push_back(&c);
-        }
-    } else {
-        for (const std::string& name : split_commas(a.cases)) {
-            const stab::Case* c = stab::find_case(name);
-            if (c == nullptr) {
-                std::string known;
-                for (const stab::Case& k : stab::cases()) {
-                    known += (known.empty() ? "" : ", ") + std::string(k.name);
-                }
-                throw Error("unknown stability case '" + name + "' (known: " + known + ")");
-            }
-            selected.push_back(c);
-        }
-    }
-
-    stab::ReportHeader header;
-    header.command = fmt::format("rtlab stability --rays {} --seed {}", opt.rays, opt.seed);
-    if (!a.cases.empty()) {
-        header.command += " --case " + a.cases;
-    }
-    const char* rev = std::getenv("RTLAB_GIT_REVISION");
-    header.revision = rev != nullptr && *rev != '\0' ? rev : "unknown";
-    header.compiler = stab::compiler_description();
-    header.cpu = stab::cpu_description();
-    header.options = opt;
-
+    const std::vector<const stab::Case*> selected = selected_cases(a.cases);
+    const stab::ReportHeader header = report_header(a, opt);
     std::vector<stab::CaseResult> results;
     std::size_t total_failures = 0;
     for (std::size_t i = 0; i < selected.size(); ++i) {
-        const stab::Case& c = *selected[i];
-        std::cerr << fmt::format("rtlab stability: [{}/{}] {} ...\n", i + 1, selected.size(),
-                                 c.name);
-        const auto t0 = std::chrono::steady_clock::now();
-        stab::CaseResult r;
-        r.name = std::string(c.name);
-        r.description = std::string(c.description);
-        r.rows = c.run(opt);
-        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::size_t failures = 0;
-        for (const stab::Row& row : r.rows) {
-            failures += row.failures;
-        }
-        total_failures += failures;
-        std::cerr << fmt::format("rtlab stability: [{}/{}] {}: {} rows, {} failures, {:.1f} s\n",
-                                 i + 1, selected.size(), c.name, r.rows.size(), failures,
-                                 r.seconds);
-        results.push_back(std::move(r));
+        results.push_back(run_case(*selected[i], i, selected.size(), opt, total_failures));
     }
 
     const std::string md = stab::to_markdown(header, results);
