@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <span>
 #include <tbb/parallel_for.h>
 #include <vector>
@@ -83,34 +84,24 @@ AxisBest sweep_axis(const bvh_detail::TopDown& t,
     return out;
 }
 
-Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
-    bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
-    const std::size_t n_all = td.ids.size();
-    // order[a] holds the ids sorted by centre on axis a (ties by id); every node's range [b, e)
-    // holds the same id set in all three arrays. Sorted as 64-bit keys, the centre's bits made
-    // to order as unsigned integers above the id (ids are in increasing order in td.ids, so the
-    // stable radix sort breaks ties by id): the same strict total order as comparing centres.
-    std::array<ScratchVector<std::uint32_t>, 3> order;
-    ScratchVector<std::uint64_t> keys(n_all);
-    for (std::uint32_t a = 0; a < 3; ++a) {
-        tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
-            keys[i] = (std::uint64_t{bvh_detail::float_order_key(td.center(td.ids[i])[a])} << 32) |
-                      td.ids[i];
-        });
-        bvh_detail::radix_sort_by_high(keys, 32);
-        order[a].resize(n_all);
-        tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
-            order[a][i] = static_cast<std::uint32_t>(keys[i]);
-        });
+/// The sweep builder's state over one TopDown: the ids sorted by centre on each axis (every
+/// node's range [b, e) holds the same id set in all three orders) and scratch indexed by slot or
+/// id, so concurrent subtrees (disjoint ranges) never share it. Uninitialised (ScratchVector):
+/// every entry is written before it is read.
+class SweepOrders {
+public:
+    explicit SweepOrders(const bvh_detail::TopDown& td)
+        : right_area_(td.ids.size()), goes_left_(td.boxes.size()), scratch_(td.ids.size()) {
+        sort(td);
     }
-    // Scratch indexed by slot or id, so concurrent subtrees (disjoint ranges) never share it.
-    // Uninitialised (ScratchVector): every entry is written before it is read.
-    ScratchVector<float> right_area(n_all);
-    ScratchVector<char> goes_left(td.boxes.size());
-    ScratchVector<std::uint32_t> scratch(n_all);
 
-    auto split = [&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
-                     bool balance) -> std::optional<bvh_detail::Split> {
+    /// TopDown's split callback: a leaf (nullopt), the median of the largest centroid axis when
+    /// balancing or when the centroids coincide, else the cheapest sweep split over the axes.
+    std::optional<bvh_detail::Split> split(bvh_detail::TopDown& t,
+                                           std::uint32_t b,
+                                           std::uint32_t e,
+                                           const Bounds3f& box,
+                                           bool balance) {
         const std::uint32_t n = e - b;
         if (!balance && bvh_detail::sah_leaf_anyway(t.config, n)) {
             return std::nullopt;
@@ -129,7 +120,7 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
         } else {
             float best = std::numeric_limits<float>::infinity();
             for (std::uint32_t a = 0; a < 3; ++a) {
-                const AxisBest x = sweep_axis(t, order[a], b, e, right_area);
+                const AxisBest x = sweep_axis(t, order_[a], b, e, right_area_);
                 if (x.cost < best) {
                     best = x.cost;
                     best_axis = a;
@@ -150,26 +141,70 @@ Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
                 return std::nullopt;
             }
         }
-        // Mark the left set, then stably partition the other two orders so they stay sorted.
-        const ScratchVector<std::uint32_t>& split_order = order[best_axis];
+        partition(t, b, e, best_axis, best_mid);
+        return bvh_detail::Split{best_mid, best_axis};
+    }
+
+private:
+    /// order_[a]: the ids sorted by centre on axis a (ties by id), as 64-bit keys, the centre's
+    /// bits made to order as unsigned integers above the id (ids are in increasing order in
+    /// td.ids, so the stable radix sort breaks ties by id): the same strict total order as
+    /// comparing centres.
+    void sort(const bvh_detail::TopDown& td) {
+        const std::size_t n_all = td.ids.size();
+        ScratchVector<std::uint64_t> keys(n_all);
+        for (std::uint32_t a = 0; a < 3; ++a) {
+            tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
+                keys[i] =
+                    (std::uint64_t{bvh_detail::float_order_key(td.center(td.ids[i])[a])} << 32) |
+                    td.ids[i];
+            });
+            bvh_detail::radix_sort_by_high(keys, 32);
+            order_[a].resize(n_all);
+            tbb::parallel_for(std::size_t{0}, n_all, [&](std::size_t i) {
+                order_[a][i] = static_cast<std::uint32_t>(keys[i]);
+            });
+        }
+    }
+
+    /// Splits [b, e) at slot mid of the axis order: marks the left set, stably partitions the
+    /// other two orders so they stay sorted, and copies the axis order into t.ids.
+    void partition(bvh_detail::TopDown& t,
+                   std::uint32_t b,
+                   std::uint32_t e,
+                   std::uint32_t axis,
+                   std::uint32_t mid) {
+        const std::uint32_t n = e - b;
+        const ScratchVector<std::uint32_t>& split_order = order_[axis];
         bvh_detail::for_range(n, [&](std::size_t lo, std::size_t hi) {
             for (std::size_t i = b + lo; i < b + hi; ++i) {
-                goes_left[split_order[i]] = i < best_mid ? 1 : 0;
+                goes_left_[split_order[i]] = i < mid ? 1 : 0;
             }
         });
         for (std::uint32_t a = 0; a < 3; ++a) {
-            if (a != best_axis) {
-                bvh_detail::stable_partition(order[a], scratch, b, e,
-                                             [&](std::uint32_t id) { return goes_left[id] != 0; });
+            if (a != axis) {
+                bvh_detail::stable_partition(order_[a], scratch_, b, e,
+                                             [&](std::uint32_t id) { return goes_left_[id] != 0; });
             }
         }
         bvh_detail::for_range(n, [&](std::size_t lo, std::size_t hi) {
             std::copy(split_order.begin() + b + lo, split_order.begin() + b + hi,
                       t.ids.begin() + b + lo);
         });
-        return bvh_detail::Split{best_mid, best_axis};
-    };
-    return td.run(split, parallel);
+    }
+
+    std::array<ScratchVector<std::uint32_t>, 3> order_;
+    ScratchVector<float> right_area_;
+    ScratchVector<char> goes_left_;
+    ScratchVector<std::uint32_t> scratch_;
+};
+
+Bvh build(const BuildInput& in, const Bvh::Config& cfg, bool parallel) {
+    bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
+    SweepOrders orders(td);
+    return td.run([&](bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, const Bounds3f& box,
+                      bool balance) { return orders.split(t, b, e, box, balance); },
+                  parallel);
 }
 
 }  // namespace
