@@ -97,19 +97,65 @@ void bin_range(const bvh_detail::TopDown& t, std::uint32_t b, std::uint32_t e, A
         });
 }
 
+/// Bins and sweep scratch of one thread (subtrees may build concurrently).
+struct BinScratch {
+    AxisBins bins;
+    std::vector<float> right_area;
+    std::vector<std::uint32_t> right_count;
+};
+
+/// The cheapest split between bins over the three axes of g (bins per axis): its unnormalised
+/// cost (times the node area, so zero-area nodes need no division), axis and last left bin; cost
+/// infinity when no split leaves both sides non-empty.
+struct BinSplit {
+    float cost = std::numeric_limits<float>::infinity();
+    std::uint32_t axis = 0;
+    std::uint32_t bin = 0;
+};
+
+BinSplit best_bin_split(const Bvh::Config& cfg, std::uint32_t bins, BinScratch& s) {
+    const AxisBins& g = s.bins;
+    BinSplit best;
+    for (std::uint32_t axis = 0; axis < 3; ++axis) {
+        if (g.scale[axis] == 0.0f) {
+            continue;
+        }
+        const Bounds3f* bin_box = &g.box[axis * bins];
+        const std::uint32_t* bin_count = &g.count[axis * bins];
+        // Sweep from the right, then from the left; the split after bin k puts bins [0, k] left.
+        Bounds3f acc;
+        std::uint32_t cnt = 0;
+        for (std::uint32_t k = bins - 1; k > 0; --k) {
+            acc.extend(bin_box[k]);
+            cnt += bin_count[k];
+            s.right_area[k - 1] = acc.surface_area();
+            s.right_count[k - 1] = cnt;
+        }
+        acc = Bounds3f{};
+        cnt = 0;
+        for (std::uint32_t k = 0; k + 1 < bins; ++k) {
+            acc.extend(bin_box[k]);
+            cnt += bin_count[k];
+            if (cnt == 0 || s.right_count[k] == 0) {
+                continue;
+            }
+            const float cost = acc.surface_area() * bvh_detail::sah_count(cfg, cnt) +
+                               s.right_area[k] * bvh_detail::sah_count(cfg, s.right_count[k]);
+            if (cost < best.cost) {
+                best = {cost, axis, k};
+            }
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
 Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint32_t threads) {
     bvh_detail::TopDown td(in, bvh_detail::clamped(cfg));
     const std::uint32_t bins = td.config.bin_count;
-    // Bins and sweep scratch, one per thread (subtrees may build concurrently).
-    struct Scratch {
-        AxisBins bins;
-        std::vector<float> right_area;
-        std::vector<std::uint32_t> right_count;
-    };
-    tbb::enumerable_thread_specific<Scratch> scratch([bins] {
-        return Scratch{
+    tbb::enumerable_thread_specific<BinScratch> scratch([bins] {
+        return BinScratch{
             AxisBins{std::vector<Bounds3f>(3 * bins), std::vector<std::uint32_t>(3 * bins)},
             std::vector<float>(bins), std::vector<std::uint32_t>(bins)};
     });
@@ -123,62 +169,28 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
         if (balance || bins < 2) {
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }
-        auto& [g, right_area, right_count] = scratch.local();
-        bin_range(t, b, e, g);
-        // Costs are compared unnormalised (times the node area), so zero-area nodes need no
-        // division: leaf = Ci * n * A, split = Ct * A + Ci * (A_L n_L + A_R n_R).
-        float best = std::numeric_limits<float>::infinity();
-        std::uint32_t best_axis = 0, best_bin = 0;
-        for (std::uint32_t axis = 0; axis < 3; ++axis) {
-            if (g.scale[axis] == 0.0f) {
-                continue;
-            }
-            const Bounds3f* bin_box = &g.box[axis * bins];
-            const std::uint32_t* bin_count = &g.count[axis * bins];
-            // Sweep from the right, then from the left; the split after bin k puts bins [0, k]
-            // left.
-            Bounds3f acc;
-            std::uint32_t cnt = 0;
-            for (std::uint32_t k = bins - 1; k > 0; --k) {
-                acc.extend(bin_box[k]);
-                cnt += bin_count[k];
-                right_area[k - 1] = acc.surface_area();
-                right_count[k - 1] = cnt;
-            }
-            acc = Bounds3f{};
-            cnt = 0;
-            for (std::uint32_t k = 0; k + 1 < bins; ++k) {
-                acc.extend(bin_box[k]);
-                cnt += bin_count[k];
-                if (cnt == 0 || right_count[k] == 0) {
-                    continue;
-                }
-                const float cost = acc.surface_area() * bvh_detail::sah_count(t.config, cnt) +
-                                   right_area[k] * bvh_detail::sah_count(t.config, right_count[k]);
-                if (cost < best) {
-                    best = cost;
-                    best_axis = axis;
-                    best_bin = k;
-                }
-            }
-        }
-        if (best == std::numeric_limits<float>::infinity()) {
+        BinScratch& local = scratch.local();
+        bin_range(t, b, e, local.bins);
+        const BinSplit best = best_bin_split(t.config, bins, local);
+        if (best.cost == std::numeric_limits<float>::infinity()) {
             return n <= t.config.max_leaf_size ? std::nullopt : std::optional(t.median_split(b, e));
         }
+        // Leaf = Ci * n * A, split = Ct * A + Ci * (A_L n_L + A_R n_R), both times the area.
         const float area = box.surface_area();
         const float leaf_cost =
             t.config.intersection_cost * bvh_detail::sah_count(t.config, n) * area;
-        const float split_cost = t.config.traversal_cost * area + t.config.intersection_cost * best;
+        const float split_cost =
+            t.config.traversal_cost * area + t.config.intersection_cost * best.cost;
         if (n <= t.config.max_leaf_size && leaf_cost <= split_cost) {
             return std::nullopt;
         }
-        const float lo = g.lo[best_axis], scale = g.scale[best_axis];
+        const float lo = local.bins.lo[best.axis], scale = local.bins.scale[best.axis];
         const auto first_right =
             std::partition(t.ids.begin() + b, t.ids.begin() + e, [&](std::uint32_t id) {
-                return bin_of(t.center(id)[best_axis], lo, scale, bins) <= best_bin;
+                return bin_of(t.center(id)[best.axis], lo, scale, bins) <= best.bin;
             });
         const auto mid = static_cast<std::uint32_t>(first_right - t.ids.begin());
-        return bvh_detail::Split{mid, best_axis};
+        return bvh_detail::Split{mid, best.axis};
     };
     return with_threads(threads, [&] { return td.run(split, threads != 1); });
 }
