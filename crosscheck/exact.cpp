@@ -168,44 +168,58 @@ int minus(const Candidate& c, const Q& a, const Q& b, const Q& disc, const Q& x)
     return c.is_root ? root_minus(a, b, disc, c.s, x) : sgn(c.value - x);
 }
 
-}  // namespace
+std::array<Q, 3> q3(const Vec3d& v) {
+    return {Q(v.x), Q(v.y), Q(v.z)};
+}
 
-ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray) {
-    const auto q3 = [](const Vec3d& v) { return std::array<Q, 3>{Q(v.x), Q(v.y), Q(v.z)}; };
-    const auto dt = [](const std::array<Q, 3>& x, const std::array<Q, 3>& y) {
-        return Q(x[0] * y[0] + x[1] * y[1] + x[2] * y[2]);
-    };
-    const std::array<Q, 3> base = q3(cone.base), apex = q3(cone.apex), o = q3(ray.org),
-                           d = q3(ray.dir);
-    std::array<Q, 3> e, w0, wa;
-    for (std::size_t k = 0; k < 3; ++k) {
-        e[k] = apex[k] - base[k];
-        w0[k] = o[k] - base[k];
-        wa[k] = o[k] - apex[k];
+Q dot3(const std::array<Q, 3>& x, const std::array<Q, 3>& y) {
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+
+/// A cone (or cylinder) and a ray in rationals: the side is g(t) = a t^2 + 2 b t + c = 0 with
+/// 0 <= s0 + t sd <= E (w.e along the axis e = apex - base, E = e.e), a >= 0.
+struct ConeQuadric {
+    std::array<Q, 3> d, w0, wa;  ///< direction; origin - base; origin - apex
+    Q r0, r1, big_e, s0, sd;
+    Q a, b, c;
+
+    ConeQuadric(const Cone<double>& cone, const Rayd& ray)
+        : d(q3(ray.dir)), r0(cone.base_radius), r1(cone.apex_radius) {
+        const std::array<Q, 3> base = q3(cone.base), apex = q3(cone.apex), o = q3(ray.org);
+        std::array<Q, 3> e;
+        for (std::size_t k = 0; k < 3; ++k) {
+            e[k] = apex[k] - base[k];
+            w0[k] = o[k] - base[k];
+            wa[k] = o[k] - apex[k];
+        }
+        big_e = dot3(e, e);
+        s0 = dot3(w0, e);
+        sd = dot3(d, e);  // w.e = s0 + t sd
+        const Q l0 = r0 * big_e + (r1 - r0) * s0, ld = (r1 - r0) * sd;
+        const Q dd = dot3(d, d);
+        a = big_e * big_e * dd - big_e * sd * sd - ld * ld;
+        b = big_e * big_e * dot3(w0, d) - big_e * s0 * sd - l0 * ld;
+        c = big_e * big_e * dot3(w0, w0) - big_e * s0 * s0 - l0 * l0;
+        if (a < 0) {
+            a = -a;
+            b = -b;
+            c = -c;
+        }
     }
-    const Q r0(cone.base_radius), r1(cone.apex_radius);
-    const Q big_e = dt(e, e);
-    const Q s0 = dt(w0, e), sd = dt(d, e);  // w.e = s0 + t sd
-    const Q l0 = r0 * big_e + (r1 - r0) * s0, ld = (r1 - r0) * sd;
-    const Q dd = dt(d, d);
-    // g(t) = a t^2 + 2 b t + c; the side is g = 0 with 0 <= s0 + t sd <= E.
-    Q a = big_e * big_e * dd - big_e * sd * sd - ld * ld;
-    Q b = big_e * big_e * dt(w0, d) - big_e * s0 * sd - l0 * ld;
-    Q c = big_e * big_e * dt(w0, w0) - big_e * s0 * s0 - l0 * l0;
-    if (a < 0) {
-        a = -a;
-        b = -b;
-        c = -c;
-    }
-    // The t interval [lo, hi] of the window and the slab 0 <= w.e <= E (hi absent when +inf).
+};
+
+/// The first side point in the ray's window and the slab 0 <= w.e <= E (invalid when none);
+/// disc is b^2 - a c when the side is a quadric (a != 0), else 0.
+Candidate cone_side(const ConeQuadric& q, const Rayd& ray, Q& disc) {
+    // The t interval [lo, hi] of the window and the slab (hi absent when +inf).
     Q lo(ray.tmin);
     bool has_hi = std::isfinite(ray.tmax);
     Q hi(has_hi ? ray.tmax : 0.0);
     bool slab_empty = false;
-    if (sd == 0) {
-        slab_empty = s0 < 0 || s0 > big_e;
+    if (q.sd == 0) {
+        slab_empty = q.s0 < 0 || q.s0 > q.big_e;
     } else {
-        Q ta = -s0 / sd, tb = (big_e - s0) / sd;
+        Q ta = -q.s0 / q.sd, tb = (q.big_e - q.s0) / q.sd;
         if (ta > tb) {
             std::swap(ta, tb);
         }
@@ -213,33 +227,39 @@ ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray) {
         hi = has_hi ? std::min(hi, tb) : tb;
         has_hi = true;
     }
-    const auto in_window = [&](const Candidate& cand, const Q& disc) {
-        return minus(cand, a, b, disc, lo) >= 0 && (!has_hi || minus(cand, a, b, disc, hi) <= 0);
+    const auto in_window = [&](const Candidate& cand) {
+        return minus(cand, q.a, q.b, disc, lo) >= 0 &&
+               (!has_hi || minus(cand, q.a, q.b, disc, hi) <= 0);
     };
     Candidate side;
-    Q disc = 0;
-    if (!slab_empty && (!has_hi || lo <= hi)) {
-        if (a == 0) {
-            if (b != 0) {
-                side = {true, false, -c / (2 * b), 0};
-                side.valid = in_window(side, disc);
-            } else if (c == 0) {
-                side = {true, false, lo, 0};  // the line lies in the surface: first point on it
-            }
-        } else {
-            disc = b * b - a * c;
-            if (disc >= 0) {
-                for (int sgn_root : {-1, +1}) {
-                    const Candidate cand{true, true, Q(0), sgn_root};
-                    if (in_window(cand, disc)) {
-                        side = cand;
-                        break;
-                    }
-                }
+    disc = 0;
+    if (slab_empty || (has_hi && lo > hi)) {
+        return side;
+    }
+    if (q.a == 0) {
+        if (q.b != 0) {
+            side = {true, false, -q.c / (2 * q.b), 0};
+            side.valid = in_window(side);
+        } else if (q.c == 0) {
+            side = {true, false, lo, 0};  // the line lies in the surface: first point on it
+        }
+        return side;
+    }
+    disc = q.b * q.b - q.a * q.c;
+    if (disc >= 0) {
+        for (int sgn_root : {-1, +1}) {
+            const Candidate cand{true, true, Q(0), sgn_root};
+            if (in_window(cand)) {
+                return cand;
             }
         }
     }
-    // Caps: rational t on the planes w.e = 0 and w.e = E, inside the disk, inside the window.
+    return side;
+}
+
+/// The nearest cap point: rational t on the planes w.e = 0 and w.e = E, inside the disk, inside
+/// the ray's window (invalid when none).
+Candidate cone_cap(const ConeQuadric& q, const Cone<double>& cone, const Rayd& ray) {
     Candidate cap;
     const Q tmin(ray.tmin);
     const bool finite_max = std::isfinite(ray.tmax);
@@ -250,24 +270,34 @@ ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray) {
         }
         std::array<Q, 3> p;
         for (std::size_t k = 0; k < 3; ++k) {
-            p[k] = from[k] + t * d[k];
+            p[k] = from[k] + t * q.d[k];
         }
-        if (dt(p, p) <= radius * radius && (!cap.valid || t < cap.value)) {
+        if (dot3(p, p) <= radius * radius && (!cap.valid || t < cap.value)) {
             cap = {true, false, t, 0};
         }
     };
-    if (sd != 0) {
+    if (q.sd != 0) {
         if (has_cap(cone.caps, ConeCaps::base)) {
-            try_cap(-s0 / sd, w0, r0);
+            try_cap(-q.s0 / q.sd, q.w0, q.r0);
         }
         if (has_cap(cone.caps, ConeCaps::apex)) {
-            try_cap((big_e - s0) / sd, wa, r1);
+            try_cap((q.big_e - q.s0) / q.sd, q.wa, q.r1);
         }
     }
+    return cap;
+}
+
+}  // namespace
+
+ExactRoot exact_cone_root(const Cone<double>& cone, const Rayd& ray) {
+    const ConeQuadric q(cone, ray);
+    Q disc;
+    const Candidate side = cone_side(q, ray, disc);
+    const Candidate cap = cone_cap(q, cone, ray);
     const auto value = [&](const Candidate& cand) {
-        return cand.is_root ? mpfr_root(a, b, disc, cand.s) : cand.value.get_d();
+        return cand.is_root ? mpfr_root(q.a, q.b, disc, cand.s) : cand.value.get_d();
     };
-    if (side.valid && (!cap.valid || minus(side, a, b, disc, cap.value) <= 0)) {
+    if (side.valid && (!cap.valid || minus(side, q.a, q.b, disc, cap.value) <= 0)) {
         return {true, value(side)};
     }
     if (cap.valid) {
