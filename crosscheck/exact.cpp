@@ -376,67 +376,41 @@ ExactTriangleHit exact_triangle_hit(const Triangled& tri, const Rayd& ray) {
     return out;
 }
 
-ExactRoot exact_first_root(std::vector<mpq_class> p, double tmin, double tmax) {
-    trim(p);
-    ExactRoot out;
-    if (p.size() < 2) {
-        return out;  // constant along the ray (a zero polynomial cannot occur for d != 0)
+namespace {
+
+/// The end of the search interval from lo: tmax, or for an unbounded window the Cauchy bound
+/// (every root is below 1 + max |c_i / c_n|).
+Q search_end(const QPoly& p, const Q& lo, double tmax) {
+    if (!std::isinf(tmax)) {
+        return Q(tmax);
     }
-    Q lo(tmin);
-    if (eval(p, lo) == 0) {
-        return {true, tmin};
+    Q bound = 0;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+        bound = std::max<Q>(bound, abs(p[i] / p.back()));
     }
-    Q hi;
-    if (std::isinf(tmax)) {
-        // Cauchy bound: every root is below 1 + max |c_i / c_n|.
-        Q bound = 0;
-        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-            bound = std::max<Q>(bound, abs(p[i] / p.back()));
-        }
-        hi = std::max<Q>(bound + 1, lo + 1);
-    } else {
-        hi = Q(tmax);
-    }
-    const std::vector<QPoly> seq = sturm(p);
-    int v_lo = variations(seq, lo);
-    int n = v_lo - variations(seq, hi);  // distinct roots in (lo, hi]
-    if (n <= 0) {
-        return out;
-    }
-    out.hit = true;
-    // Isolate the smallest root: keep the lower half whenever it holds a root.
-    for (int step = 0; step < 400 && n > 1; ++step) {
+    return std::max<Q>(bound + 1, lo + 1);
+}
+
+/// A root of even multiplicity (exact tangency, no sign change) isolated in (lo, hi]: bisected by
+/// Sturm counts to the double nearest the interval's middle.
+double sturm_bisect(const std::vector<QPoly>& seq, Q lo, Q hi, int v_lo) {
+    for (int step = 0; step < 130; ++step) {
         const Q mid = (lo + hi) / 2;
         const int v_mid = variations(seq, mid);
         if (v_lo - v_mid >= 1) {
             hi = mid;
-            n = v_lo - v_mid;
         } else {
             lo = mid;
             v_lo = v_mid;
         }
     }
-    if (eval(p, hi) == 0) {
-        out.t = hi.get_d();
-        return out;
-    }
-    if (sign(eval(p, lo)) == sign(eval(p, hi))) {
-        // Even multiplicity (exact tangency): no sign change; keep bisecting by Sturm counts.
-        for (int step = 0; step < 130; ++step) {
-            const Q mid = (lo + hi) / 2;
-            const int v_mid = variations(seq, mid);
-            if (v_lo - v_mid >= 1) {
-                hi = mid;
-            } else {
-                lo = mid;
-                v_lo = v_mid;
-            }
-        }
-        out.t = Q((lo + hi) / 2).get_d();
-        return out;
-    }
-    // Simple (odd-multiplicity) root with a sign change: 256-bit MPFR bisection; coefficients
-    // rounded to 256 bits, far below the 110 bits the refinement needs.
+    return Q((lo + hi) / 2).get_d();
+}
+
+/// A simple (odd-multiplicity) root with a sign change in (lo, hi): 256-bit MPFR bisection to
+/// 2^-110 relative; coefficients rounded to 256 bits, far below the 110 bits the refinement
+/// needs. Degree at most 4.
+double mpfr_bisect(const QPoly& p, const Q& lo, const Q& hi) {
     const int s_lo = sign(eval(p, lo));
     if (p.size() > 5) {
         throw std::logic_error("implicit oracle: degree above 4");
@@ -469,10 +443,52 @@ ExactRoot exact_first_root(std::vector<mpq_class> p, double tmin, double tmax) {
             mpfr_set(b, m, MPFR_RNDN);
         }
     }
-    out.t = mpfr_get_d(m, MPFR_RNDN);
+    const double t = mpfr_get_d(m, MPFR_RNDN);
     mpfr_clears(a, b, m, v, w, static_cast<mpfr_ptr>(nullptr));
     for (std::size_t i = 0; i < p.size(); ++i) {
         mpfr_clear(c[i]);
+    }
+    return t;
+}
+
+}  // namespace
+
+ExactRoot exact_first_root(std::vector<mpq_class> p, double tmin, double tmax) {
+    trim(p);
+    ExactRoot out;
+    if (p.size() < 2) {
+        return out;  // constant along the ray (a zero polynomial cannot occur for d != 0)
+    }
+    Q lo(tmin);
+    if (eval(p, lo) == 0) {
+        return {true, tmin};
+    }
+    Q hi = search_end(p, lo, tmax);
+    const std::vector<QPoly> seq = sturm(p);
+    int v_lo = variations(seq, lo);
+    int n = v_lo - variations(seq, hi);  // distinct roots in (lo, hi]
+    if (n <= 0) {
+        return out;
+    }
+    out.hit = true;
+    // Isolate the smallest root: keep the lower half whenever it holds a root.
+    for (int step = 0; step < 400 && n > 1; ++step) {
+        const Q mid = (lo + hi) / 2;
+        const int v_mid = variations(seq, mid);
+        if (v_lo - v_mid >= 1) {
+            hi = mid;
+            n = v_lo - v_mid;
+        } else {
+            lo = mid;
+            v_lo = v_mid;
+        }
+    }
+    if (eval(p, hi) == 0) {
+        out.t = hi.get_d();
+    } else if (sign(eval(p, lo)) == sign(eval(p, hi))) {
+        out.t = sturm_bisect(seq, lo, hi, v_lo);
+    } else {
+        out.t = mpfr_bisect(p, lo, hi);
     }
     return out;
 }
