@@ -290,11 +290,7 @@ int run_render(const RenderArgs& a) {
             return 0;
         }
     }
-    TraceSetup setup;
-    setup.accel = accel;
-    setup.methods = split_commas(a.method);
-    check_one_method_per_family(setup.methods);
-    setup.robust = a.robust;
+    const TraceSetup setup = checked_setup(accel, a.method, a.robust);
     const SceneTracer tracer(scene, setup);
     check_methods_used(tracer, setup.methods, "render");
     load_image_writer(a.output);  // a missing OpenImageIO module fails before the render

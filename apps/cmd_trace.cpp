@@ -48,11 +48,7 @@ int run_trace(const TraceArgs& a) {
     }
     const Scene scene = load_scene(a.scene);
     const std::vector<Rayf> rays = load_rays(a.rays);
-    TraceSetup setup;
-    setup.accel = accel;
-    setup.methods = split_commas(a.method);
-    check_one_method_per_family(setup.methods);
-    setup.robust = a.robust;
+    const TraceSetup setup = checked_setup(accel, a.method, a.robust);
     const SceneTracer tracer(scene, setup);
     check_methods_used(tracer, setup.methods, "trace");
 

@@ -1,6 +1,8 @@
 #pragma once
-// --method values that would silently do nothing: shared by `rtlab trace` and `rtlab render`.
+// --method values that would silently do nothing, and the tracer set-up from --accel, --method
+// and --robust: shared by `rtlab trace` and `rtlab render`.
 
+#include "apps/args.h"
 #include "base/error.h"
 #include "trace/method_families.h"
 #include "trace/scene_tracer.h"
@@ -33,6 +35,17 @@ inline void check_one_method_per_family(const std::vector<std::string>& methods)
             first = w;
         }
     }
+}
+
+/// The tracer set-up for a canonical --accel spec, --method (comma-separated, at most one per
+/// family: checked here, before the build) and --robust.
+inline TraceSetup checked_setup(const std::string& accel, const std::string& method, bool robust) {
+    TraceSetup setup;
+    setup.accel = accel;
+    setup.methods = split_commas(method);
+    check_one_method_per_family(setup.methods);
+    setup.robust = robust;
+    return setup;
 }
 
 /// The methods named in `methods` that no set of the tracer uses (their families have no shapes
