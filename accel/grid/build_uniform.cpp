@@ -45,18 +45,14 @@ Grid build(const BuildInput& in, const GridConfig& cfg) {
         std::size_t count = 0;
         const Bounds3f& b = in.bounds[id];
         std::array<std::uint32_t, 3> lo{}, hi{};
-        for (std::size_t a = 0; a < 3; ++a) {
-            lo[a] = map.cell_of(b.lo[a] - map.pad[a], a);
-            hi[a] = map.cell_of(b.hi[a] + map.pad[a], a);
-        }
+        map.cell_range(b, lo, hi);
         for (std::uint32_t z = lo[2]; z <= hi[2]; ++z) {
             for (std::uint32_t y = lo[1]; y <= hi[1]; ++y) {
                 for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {
                     if (use_clip && !is_usable_box(in.clip(id, map.cell_box(x, y, z)))) {
                         continue;
                     }
-                    fn(x + g.res[0] * (static_cast<std::size_t>(y) +
-                                       g.res[1] * static_cast<std::size_t>(z)));
+                    fn(g.index(x, y, z));
                     ++count;
                 }
             }
@@ -67,13 +63,9 @@ Grid build(const BuildInput& in, const GridConfig& cfg) {
     // A box within one cell skips the clip: it could only confirm that cell or lose it to
     // rounding and fall back to it.
     const auto one_cell = [&](std::uint32_t id) {
-        const Bounds3f& b = in.bounds[id];
-        for (std::size_t a = 0; a < 3; ++a) {
-            if (map.cell_of(b.lo[a] - map.pad[a], a) != map.cell_of(b.hi[a] + map.pad[a], a)) {
-                return false;
-            }
-        }
-        return true;
+        std::array<std::uint32_t, 3> lo{}, hi{};
+        map.cell_range(in.bounds[id], lo, hi);
+        return lo == hi;
     };
     const auto for_cells = [&](std::uint32_t id, auto&& fn) {
         if (!in.clip || one_cell(id) || overlap(id, true, fn) == 0) {

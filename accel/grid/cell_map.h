@@ -38,6 +38,15 @@ struct CellMapper {
         const auto last = static_cast<float>(f.res[a] - 1);
         return static_cast<std::uint32_t>(std::clamp(c, 0.0f, last));
     }
+    /// The cells [lo, hi] (inclusive, per axis) box b overlaps once widened by pad.
+    void cell_range(const Bounds3f& b,
+                    std::array<std::uint32_t, 3>& lo,
+                    std::array<std::uint32_t, 3>& hi) const {
+        for (std::size_t a = 0; a < 3; ++a) {
+            lo[a] = cell_of(b.lo[a] - pad[a], a);
+            hi[a] = cell_of(b.hi[a] + pad[a], a);
+        }
+    }
     /// Cell (x, y, z)'s box widened by pad.
     Bounds3f cell_box(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
         const std::array<std::uint32_t, 3> c{x, y, z};
@@ -53,10 +62,7 @@ struct CellMapper {
     template <class Fn>
     void for_cells(const Bounds3f& b, std::uint32_t id, const ClipFn& clip, Fn&& fn) const {
         std::array<std::uint32_t, 3> lo{}, hi{};
-        for (std::size_t a = 0; a < 3; ++a) {
-            lo[a] = cell_of(b.lo[a] - pad[a], a);
-            hi[a] = cell_of(b.hi[a] + pad[a], a);
-        }
+        cell_range(b, lo, hi);
         // Few cells: listing the box's cells costs less than clipping (the clip pays off for
         // large primitives across many cells; within one cell it could only confirm it).
         std::size_t span = 1;
