@@ -15,6 +15,52 @@ from report_common import (
 )
 
 
+def scaling_series(build, traces):
+    """Build times per (structure, scene, threads) and, for a trace size sweep, ns per ray per
+    (structure, scene family, ray kind): lists of (primitive count, time)."""
+    series = {}
+    # build/<accel>/<scene>/<prim count>/threads:<k>
+    for name, r in build.items():
+        parts = name.split("/")
+        if len(parts) < 5:
+            continue
+        accel, scene, threads = parts[1], parts[2], parts[-1]
+        n = num(r, "prims")
+        if n is None:
+            try:
+                n = float(parts[3])
+            except ValueError:
+                continue
+        ms = num(r, "build_ms")
+        if ms is None:
+            ms = to_ms(float(r.get("real_time", 0)), r.get("time_unit", "ns"))
+        series.setdefault((accel, scene, threads), []).append((n, ms))
+    trace = {}
+    for name, r in traces.items():
+        parts = name.split("/")
+        n = num(r, "prims")
+        rps = num(r, "rays/s")
+        if len(parts) < 4 or n is None or not rps:
+            continue
+        # Only sizes of one scene family form a sweep (soup_1000, soup_8000, ...): different
+        # scenes are not points of one curve.
+        family = re.sub(r"[_-]?\d+$", "", "/".join(parts[2:-1]))
+        trace.setdefault((parts[1], family, parts[-1]), []).append((n, 1e9 / rps))
+    trace = {k: v for k, v in trace.items() if len({n for n, _ in v}) >= 2}
+    return series, trace
+
+
+def loglog_exponent(xs, ys):
+    """Least-squares k of log(y) = a + k log(x); None with fewer than two distinct x."""
+    if len(xs) < 2 or len(set(xs)) < 2:
+        return None
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    sxx = sum((x - mx) ** 2 for x in lx)
+    return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx
+
+
 class StructureSections:
     """Mixed into bench/report.py's Report: uses its rows, prov, plots, heat_dir, plt, add, family and
     image."""
@@ -97,36 +143,7 @@ class StructureSections:
     # -- scaling ------------------------------------------------------------------------------
     def scaling(self):
         self.add("## Scaling with primitive count", "")
-        build = self.family("build/")
-        series = {}
-        # build/<accel>/<scene>/<prim count>/threads:<k>
-        for name, r in build.items():
-            parts = name.split("/")
-            if len(parts) < 5:
-                continue
-            accel, scene, threads = parts[1], parts[2], parts[-1]
-            n = num(r, "prims")
-            if n is None:
-                try:
-                    n = float(parts[3])
-                except ValueError:
-                    continue
-            ms = num(r, "build_ms")
-            if ms is None:
-                ms = to_ms(float(r.get("real_time", 0)), r.get("time_unit", "ns"))
-            series.setdefault((accel, scene, threads), []).append((n, ms))
-        trace = {}
-        for name, r in self.family("trace/").items():
-            parts = name.split("/")
-            n = num(r, "prims")
-            rps = num(r, "rays/s")
-            if len(parts) < 4 or n is None or not rps:
-                continue
-            # Only sizes of one scene family form a sweep (soup_1000, soup_8000, ...): different
-            # scenes are not points of one curve.
-            family = re.sub(r"[_-]?\d+$", "", "/".join(parts[2:-1]))
-            trace.setdefault((parts[1], family, parts[-1]), []).append((n, 1e9 / rps))
-        trace = {k: v for k, v in trace.items() if len({n for n, _ in v}) >= 2}
+        series, trace = scaling_series(self.family("build/"), self.family("trace/"))
         if not series and not trace:
             self.add("_No `build/` benchmarks (nor a trace size sweep) in this run: section "
                      "skipped._", "")
@@ -138,6 +155,10 @@ class StructureSections:
                      "counter over two or more sizes in this run._", "")
         self.add("| family | series | sizes | exponent k | time at largest n |",
                  "|---|---|---:|---:|---:|")
+        self._scaling_figure(series, trace)
+
+    def _scaling_figure(self, series, trace):
+        """The table rows of every series and their small multiples, scaling.png in the plots folder."""
         # Small multiples: one panel per scene family and ray kind (build: per scene), one line
         # per structure in it, the same colour for a structure in every panel, one shared legend.
         panels = {}
@@ -167,13 +188,7 @@ class StructureSections:
                     continue
                 xs = [p[0] for p in pts]
                 ys = [p[1] for p in pts]
-                k = None
-                if len(pts) >= 2 and len(set(xs)) >= 2:
-                    lx = [math.log(x) for x in xs]
-                    ly = [math.log(y) for y in ys]
-                    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-                    sxx = sum((x - mx) ** 2 for x in lx)
-                    k = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx
+                k = loglog_exponent(xs, ys)
                 dashed = accel.startswith("embree") or (fam == "build" and sub != "threads:1")
                 ax.plot(xs, ys, marker="s" if fam == "build" and sub != "threads:1" else "o",
                         markersize=3, color=color[accel], linestyle="--" if dashed else "-")
