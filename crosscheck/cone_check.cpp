@@ -100,6 +100,36 @@ Vec3f side_point(const Cone<float>& c, float f, const Vec3f& radial, float scale
     return c.base + (c.apex - c.base) * f + radial * (radius_at(c, f) * scale);
 }
 
+/// The "grazing" set: in the tangent plane at a side point moved radially by a factor 1 + delta,
+/// |delta| log-uniform in [1e-7, 1e-2], either sign: near-tangent rays, tangent to the quadric.
+Rayf grazing_ray(
+    Rng& rng, const Cone<float>& c, const Vec3f& axis, const Vec3f& radial, std::size_t i) {
+    const float f = rng.uni(0.05f, 0.95f);
+    const float delta = (i % 2 ? 1.0f : -1.0f) * std::pow(10.0f, rng.uni(-7, -2));
+    const Vec3f touch = side_point(c, f, radial, 1 + delta);
+    const Vec3f along = cross(axis, radial);  // the tangent plane holds `along` and the
+                                              // generator direction
+    const Vec3f gen = normalize(c.apex - c.base + radial * (c.apex_radius - c.base_radius));
+    const Vec3f dir = normalize(along * rng.uni(0.2f, 1) + gen * rng.uni(-0.5f, 0.5f));
+    return {touch - dir * rng.uni(1, 20), dir};
+}
+
+/// The "far" set: a cone made anew, small and far (distance / radius log-uniform in [10, 1e4]),
+/// and a ray aimed within 1.2 radii of it.
+Rayf small_far_ray(Rng& rng, std::size_t i, Cone<float>& c) {
+    const float r = std::pow(10.0f, rng.uni(-3, 0));
+    const Vec3f dir = rng.dir();
+    const float dist = r * std::pow(10.0f, rng.uni(1, 4));
+    const Vec3f org{rng.uni(-1, 1), rng.uni(-1, 1), rng.uni(-1, 1)};
+    const Vec3f aim = org + normalize(dir) * dist;
+    const Vec3f ax = normalize(rng.dir());
+    const float h = r * rng.uni(0.5f, 4);
+    c.base = aim - ax * (h * rng.uni(0, 1)) + perpendicular(rng, ax) * (r * rng.uni(0, 1.2f));
+    c.apex = c.base + ax * h;
+    radii(rng, i, r, c);
+    return {org, dir};
+}
+
 /// One case of set `name`.
 ConeCase make_case(Rng& rng, const std::string& name, std::size_t i) {
     ConeCase k;
@@ -134,16 +164,7 @@ ConeCase make_case(Rng& rng, const std::string& name, std::size_t i) {
             k.ray.org = k.ray.org + axis * (length(c.apex - c.base) + rng.uni(2, 20));
         }
     } else if (name == "grazing") {
-        // In the tangent plane at a side point moved radially by a factor 1 + delta, |delta|
-        // log-uniform in [1e-7, 1e-2], either sign: near-tangent rays, tangent to the quadric.
-        const float f = rng.uni(0.05f, 0.95f);
-        const float delta = (i % 2 ? 1.0f : -1.0f) * std::pow(10.0f, rng.uni(-7, -2));
-        const Vec3f touch = side_point(c, f, radial, 1 + delta);
-        const Vec3f along = cross(axis, radial);  // the tangent plane holds `along` and the
-                                                  // generator direction
-        const Vec3f gen = normalize(c.apex - c.base + radial * (c.apex_radius - c.base_radius));
-        const Vec3f dir = normalize(along * rng.uni(0.2f, 1) + gen * rng.uni(-0.5f, 0.5f));
-        k.ray = {touch - dir * rng.uni(1, 20), dir};
+        k.ray = grazing_ray(rng, c, axis, radial, i);
     } else if (name == "rim") {
         // Aimed at a point of an end circle moved by +-1e-6 relative (open edge or cap edge);
         // never at the tip of a pointed cone (a single point, not an edge).
@@ -169,18 +190,7 @@ ConeCase make_case(Rng& rng, const std::string& name, std::size_t i) {
         const Vec3f target = side_point(c, rng.uni(0, 1), radial, rng.uni(0, 1.2f));
         k.ray = {far_org, target - far_org};
     } else {
-        // Small and far: distance / radius log-uniform in [10, 1e4], aimed within 1.2 radii.
-        const float r = std::pow(10.0f, rng.uni(-3, 0));
-        const Vec3f dir = rng.dir();
-        const float dist = r * std::pow(10.0f, rng.uni(1, 4));
-        const Vec3f org{rng.uni(-1, 1), rng.uni(-1, 1), rng.uni(-1, 1)};
-        const Vec3f aim = org + normalize(dir) * dist;
-        const Vec3f ax = normalize(rng.dir());
-        const float h = r * rng.uni(0.5f, 4);
-        c.base = aim - ax * (h * rng.uni(0, 1)) + perpendicular(rng, ax) * (r * rng.uni(0, 1.2f));
-        c.apex = c.base + ax * h;
-        radii(rng, i, r, c);
-        k.ray = {org, dir};
+        k.ray = small_far_ray(rng, i, c);
     }
     return k;
 }
