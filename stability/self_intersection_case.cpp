@@ -116,25 +116,30 @@ double log_uniform(Sampler& rng) {
     return std::pow(10.0, rng.uniform(-8, 8));
 }
 
-/// Random triangles: centre = unit * |c|, vertices centre + unit * size, |c| and size log-uniform
-/// in [1e-8, 1e8], rounded to T; the primary ray comes from 3 sizes away towards a random interior
-/// point. Per triangle intersector M: rows per policy.
+/// The random triangles of triangle_rows with their primary rays, strata (0: 1 <= |c| / size <=
+/// 1e4) and shadow directions and lengths, and the count of those rounding collapsed.
 template <class T>
-void triangle_rows(const Options& opt, std::vector<Row>& rows) {
-    Sampler rng(opt.seed, std::is_same_v<T, float> ? 500 : 600);
+struct TriangleCases {
     std::vector<Triangle<T>> tris;
     std::vector<Ray<T>> primaries;
     std::vector<int> strata;
     std::vector<Vec3d> shadow_dirs;
     std::vector<double> shadow_len;
     std::size_t degenerate = 0;
-    while (tris.size() < opt.rays) {
+};
+
+/// opt.rays triangles for triangle_rows, as it describes them.
+template <class T>
+TriangleCases<T> triangle_cases(const Options& opt) {
+    Sampler rng(opt.seed, std::is_same_v<T, float> ? 500 : 600);
+    TriangleCases<T> k;
+    while (k.tris.size() < opt.rays) {
         const Vec3d c = rng.unit() * log_uniform(rng);
         const double size = log_uniform(rng);
         const Triangle<T> tri{Vec3<T>(c + rng.unit() * size), Vec3<T>(c + rng.unit() * size),
                               Vec3<T>(c + rng.unit() * size)};
         if (is_degenerate(tri.p0, tri.p1, tri.p2)) {
-            ++degenerate;  // collapsed by rounding to T: no surface to leave
+            ++k.degenerate;  // collapsed by rounding to T: no surface to leave
             continue;
         }
         double b1 = rng.uniform(0, 1), b2 = rng.uniform(0, 1);
@@ -145,12 +150,22 @@ void triangle_rows(const Options& opt, std::vector<Row>& rows) {
         const Vec3d p0(tri.p0), p1(tri.p1), p2(tri.p2);
         const Vec3d aim = p0 + (p1 - p0) * b1 + (p2 - p0) * b2;
         const Vec3d org = aim + rng.unit() * (3 * size);
-        tris.push_back(tri);
-        primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
-        strata.push_back(size <= length(c) && length(c) <= 1e4 * size ? 0 : 1);
-        shadow_dirs.push_back(rng.unit());
-        shadow_len.push_back(size * std::pow(10.0, rng.uniform(-1, 1)));
+        k.tris.push_back(tri);
+        k.primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
+        k.strata.push_back(size <= length(c) && length(c) <= 1e4 * size ? 0 : 1);
+        k.shadow_dirs.push_back(rng.unit());
+        k.shadow_len.push_back(size * std::pow(10.0, rng.uniform(-1, 1)));
     }
+    return k;
+}
+
+/// Random triangles: centre = unit * |c|, vertices centre + unit * size, |c| and size log-uniform
+/// in [1e-8, 1e8], rounded to T; the primary ray comes from 3 sizes away towards a random interior
+/// point. Per triangle intersector M: rows per policy.
+template <class T>
+void triangle_rows(const Options& opt, std::vector<Row>& rows) {
+    const TriangleCases<T> k = triangle_cases<T>(opt);
+    const auto& [tris, primaries, strata, shadow_dirs, shadow_len, degenerate] = k;
     for_each_triangle_intersector<T>([&]<class M>() {
         for (const bool bary : {false, true}) {
             std::vector<typename M::Prepared> prep;
