@@ -391,18 +391,26 @@ Q search_end(const QPoly& p, const Q& lo, double tmax) {
     return std::max<Q>(bound + 1, lo + 1);
 }
 
+/// One bisection of (lo, hi] (v_lo: Sturm variations at lo) by Sturm counts: the lower half when
+/// it holds a root, else the upper. Returns the distinct roots in the lower half (0: upper kept).
+int sturm_halve(const std::vector<QPoly>& seq, Q& lo, Q& hi, int& v_lo) {
+    const Q mid = (lo + hi) / 2;
+    const int v_mid = variations(seq, mid);
+    const int below = v_lo - v_mid;
+    if (below >= 1) {
+        hi = mid;
+    } else {
+        lo = mid;
+        v_lo = v_mid;
+    }
+    return below;
+}
+
 /// A root of even multiplicity (exact tangency, no sign change) isolated in (lo, hi]: bisected by
 /// Sturm counts to the double nearest the interval's middle.
 double sturm_bisect(const std::vector<QPoly>& seq, Q lo, Q hi, int v_lo) {
     for (int step = 0; step < 130; ++step) {
-        const Q mid = (lo + hi) / 2;
-        const int v_mid = variations(seq, mid);
-        if (v_lo - v_mid >= 1) {
-            hi = mid;
-        } else {
-            lo = mid;
-            v_lo = v_mid;
-        }
+        sturm_halve(seq, lo, hi, v_lo);
     }
     return Q((lo + hi) / 2).get_d();
 }
@@ -473,14 +481,9 @@ ExactRoot exact_first_root(std::vector<mpq_class> p, double tmin, double tmax) {
     out.hit = true;
     // Isolate the smallest root: keep the lower half whenever it holds a root.
     for (int step = 0; step < 400 && n > 1; ++step) {
-        const Q mid = (lo + hi) / 2;
-        const int v_mid = variations(seq, mid);
-        if (v_lo - v_mid >= 1) {
-            hi = mid;
-            n = v_lo - v_mid;
-        } else {
-            lo = mid;
-            v_lo = v_mid;
+        const int below = sturm_halve(seq, lo, hi, v_lo);
+        if (below >= 1) {
+            n = below;
         }
     }
     if (eval(p, hi) == 0) {
