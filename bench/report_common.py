@@ -1,5 +1,5 @@
 """Helpers of bench/report.py: provenance (command, git revision, compiler, CPU), reading
-Google Benchmark JSON rows, number formatting, and the Pareto plot."""
+Google Benchmark JSON rows, number formatting, the throughput bar chart and the Pareto plot."""
 
 import math
 import platform
@@ -167,6 +167,26 @@ def plain_log_axis(ax, axis="x"):
     target.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     target.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     target.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+
+
+def throughput_bars(plt, path, kinds, series, title, caption, bottom):
+    """Mrays/s bars grouped by ray kind, one bar per (label, values, bar style) in series, the
+    legend below and the caption under it (bottom: the figure fraction kept for both)."""
+    fig, ax = plt.subplots(figsize=(10.5, 4.8 + 0.22 * ((len(series) + 1) // 2)), dpi=110)
+    width = 0.8 / max(1, len(series))
+    for i, (label, vals, style) in enumerate(series):
+        xs = [ki + (i - (len(series) - 1) / 2) * width for ki in range(len(kinds))]
+        ax.bar(xs, vals, width * 0.95, label=label, edgecolor="black", linewidth=0.5, **style)
+    ax.set_xticks(range(len(kinds)))
+    ax.set_xticklabels(kinds)
+    ax.set_ylabel("Mrays/s")
+    ax.set_title(title)
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
+    fig.text(0.01, 0.005, caption, fontsize=7, color="dimgrey")
+    fig.tight_layout(rect=(0, bottom, 1, 1))
+    fig.savefig(path)
+    plt.close(fig)
 
 
 def pareto_plot(plt, path, title, xlabel, ylabel, labels, xs, ys, caption, zero_floor):

@@ -9,6 +9,7 @@ import shutil
 
 from report_common import (
     prov_caption,
+    throughput_bars,
     to_ms,
     num,
     fmt,
@@ -112,32 +113,23 @@ class StructureSections:
                          + f" | {fmt(num(first, 'sah_cost'))} |")
             self.add("", "nodes/ray and prims/ray: mean over the ray kinds.", "")
             # Canonical specs make long labels: the legend goes below the axes, two columns.
-            fig, ax = plt.subplots(figsize=(10.5, 4.8 + 0.22 * ((len(order) + 1) // 2)), dpi=110)
-            width = 0.8 / max(1, len(order))
             cmap = plt.get_cmap("tab20")
             hatches = ["//", "xx", "\\\\", ".."]
+            series = []
             n_emb = 0
             for ai, accel in enumerate(order):
                 vals = [(num(accels[accel][k], "rays/s") or 0) / 1e6 if k in accels[accel]
                         else 0 for k in kinds]
-                xs = [ki + (ai - (len(order) - 1) / 2) * width for ki in range(len(kinds))]
                 emb = accel.startswith("embree")
-                ax.bar(xs, vals, width * 0.95, label=accel,
-                       color="lightgrey" if emb else cmap(ai % 20), edgecolor="black",
-                       hatch=hatches[n_emb % len(hatches)] if emb else None, linewidth=0.5)
+                series.append((accel, vals, {
+                    "color": "lightgrey" if emb else cmap(ai % 20),
+                    "hatch": hatches[n_emb % len(hatches)] if emb else None}))
                 n_emb += 1 if emb else 0
-            ax.set_xticks(range(len(kinds)))
-            ax.set_xticklabels(kinds)
-            ax.set_ylabel("Mrays/s")
-            ax.set_title(f"Traversal throughput, {scene} (hatched grey = Embree reference)")
-            ax.grid(True, axis="y", alpha=0.3)
-            ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
-            fig.text(0.01, 0.005, prov_caption(self.prov), fontsize=7, color="dimgrey")
-            fig.tight_layout(rect=(0, 0.06, 1, 1))
             safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", scene)
             path = os.path.join(self.plots, f"mrays-{safe}.png")
-            fig.savefig(path)
-            plt.close(fig)
+            throughput_bars(plt, path, kinds, series,
+                            f"Traversal throughput, {scene} (hatched grey = Embree reference)",
+                            prov_caption(self.prov), 0.06)
             self.image(path, f"Mrays/s, {scene}")
 
     # -- scaling ------------------------------------------------------------------------------

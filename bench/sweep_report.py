@@ -9,7 +9,7 @@ host and CPU from the results' provenance.
 import os
 import re
 
-from report_common import fmt
+from report_common import fmt, throughput_bars
 
 TIMED = "mrays_per_s"
 
@@ -81,26 +81,12 @@ def _scene_section(lines, plt, plots, scene, cases, prov):
     lines.append("")
     if plt is None:
         return
-    labels = list(rows)
-    fig, ax = plt.subplots(figsize=(10.5, 4.8 + 0.22 * ((len(labels) + 1) // 2)), dpi=110)
-    width = 0.8 / max(1, len(labels))
     cmap = plt.get_cmap("tab20")
-    for i, label in enumerate(labels):
-        vals = [rows[label][k].get(TIMED) or 0 if k in rows[label] else 0 for k in kinds]
-        xs = [ki + (i - (len(labels) - 1) / 2) * width for ki in range(len(kinds))]
-        ax.bar(xs, vals, width * 0.95, label=label, color=cmap(i % 20), edgecolor="black",
-               linewidth=0.5)
-    ax.set_xticks(range(len(kinds)))
-    ax.set_xticklabels(kinds)
-    ax.set_ylabel("Mrays/s")
-    ax.set_title(f"Traversal throughput, {scene}")
-    ax.grid(True, axis="y", alpha=0.3)
-    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
-    fig.text(0.01, 0.005, _caption(prov), fontsize=7, color="dimgrey")
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    series = [(label, [rows[label][k].get(TIMED) or 0 if k in rows[label] else 0 for k in kinds],
+               {"color": cmap(i % 20)}) for i, label in enumerate(rows)]
     path = os.path.join(plots, f"sweep-mrays-{_safe(scene)}.png")
-    fig.savefig(path)
-    plt.close(fig)
+    throughput_bars(plt, path, kinds, series, f"Traversal throughput, {scene}", _caption(prov),
+                    0.07)
     lines += [f"![Mrays/s, {scene}]({path})", ""]
 
 
