@@ -1,12 +1,16 @@
 #pragma once
-// Writing output files completely or not at all, without clobbering what is not ours:
-//  - a regular file (or a new one) is written to a uniquely named temporary file in the target's
-//    folder, which is renamed over the target when complete (atomic within one file system) and
-//    removed on any error, and on SIGINT/SIGTERM (see install_interrupt_cleanup);
-//  - a symbolic link is followed (to its final target), so the target is replaced and the link
-//    stays a link;
-//  - a FIFO, character or block device (e.g. /dev/null, /dev/stdout) is written into directly: it
-//    is never replaced or removed.
+// Writing output files completely or not at all, and never replacing a file that is not a regular
+// file of rtlab's own making (rtlab runs as root on shared machines):
+//  - a new file, or a regular file rtlab wrote before (it carries the extended attribute
+//    user.rtlab.output, which every output gets), is written to a uniquely named temporary file in
+//    the target's folder, which is renamed over the target when complete (atomic within one file
+//    system) and removed on any error, and on SIGINT/SIGTERM (see install_interrupt_cleanup);
+//  - a FIFO, character or block device (e.g. /dev/null, /dev/stdout on a terminal or pipe), also
+//    through a symbolic link, is written into directly: it is never replaced or removed;
+//  - anything else is refused with an error naming the output: a regular file rtlab did not write
+//    (a user's file, a file copied without its attributes), a symbolic link to a regular file or
+//    to nothing (writing through it would replace or create a file the link's owner chose), a
+//    folder, a socket.
 // check_output_path() runs the same checks before any work starts, so an unwritable output fails
 // in the first second rather than after an hour of computation.
 
@@ -26,6 +30,7 @@
 #include <string>
 #include <string_view>
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -94,58 +99,67 @@ inline void unregister_temporary(std::size_t i) {
     }
 }
 
-/// Follows symbolic links to the final target (which may not exist yet).
-inline std::filesystem::path follow_links(const std::filesystem::path& file) {
-    std::filesystem::path p = file;
-    for (int hops = 0; hops < 40; ++hops) {
-        std::error_code ec;
-        if (!std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec))) {
-            return p;
-        }
-        const std::filesystem::path to = std::filesystem::read_symlink(p, ec);
-        if (ec) {
-            throw Error(file.string() + ": cannot read symbolic link (" + ec.message() + ")");
-        }
-        p = to.is_absolute() ? to : p.parent_path() / to;
-    }
-    throw Error(file.string() + ": too many levels of symbolic links");
-}
-
 }  // namespace detail
 
-/// Where an output really goes: `file` after following symbolic links, and whether it is a
-/// special file (FIFO or device) that is written into rather than replaced.
+/// The extended attribute every output rtlab writes carries: the mark of a regular file of its own
+/// making, which a later run may replace.
+inline constexpr const char* output_mark = "user.rtlab.output";
+
+/// True when the regular file `file` carries output_mark.
+inline bool has_output_mark(const std::filesystem::path& file) {
+    return ::getxattr(file.c_str(), output_mark, nullptr, 0) >= 0;
+}
+
+/// Where an output goes: `file` itself, and whether it is a special file (FIFO or device, also
+/// reached through a symbolic link) that is written into rather than replaced.
 struct OutputTarget {
     std::filesystem::path file;
     bool special = false;
 };
 
-/// Resolves an output path; throws Error naming `file` when it is a folder or a socket.
+/// Resolves an output path; throws Error naming `file` when rtlab may not write there (see the
+/// top of this header).
 inline OutputTarget resolve_output(const std::filesystem::path& file) {
     if (file.empty()) {
         throw Error("output file name is empty");
     }
-    OutputTarget t;
-    t.file = detail::follow_links(file);
+    namespace fs = std::filesystem;
+    const auto is_special = [](fs::file_type t) {
+        return t == fs::file_type::fifo || t == fs::file_type::character ||
+               t == fs::file_type::block;
+    };
+    OutputTarget t{file, false};
     std::error_code ec;
-    const std::filesystem::file_status st = std::filesystem::status(t.file, ec);
-    switch (st.type()) {
-    case std::filesystem::file_type::not_found:
-    case std::filesystem::file_type::regular:
-        break;
-    case std::filesystem::file_type::directory:
-        throw Error(file.string() + ": is a folder, not an output file");
-    case std::filesystem::file_type::fifo:
-    case std::filesystem::file_type::character:
-    case std::filesystem::file_type::block:
+    const fs::file_type own = fs::symlink_status(file, ec).type();
+    if (own == fs::file_type::symlink) {
+        if (!is_special(fs::status(file, ec).type())) {
+            throw Error(file.string() +
+                        ": is a symbolic link; rtlab does not write through links (give the file "
+                        "it points to, or remove the link)");
+        }
         t.special = true;
-        break;
+        return t;
+    }
+    if (is_special(own)) {
+        t.special = true;
+        return t;
+    }
+    switch (own) {
+    case fs::file_type::not_found:
+        return t;
+    case fs::file_type::regular:
+        if (!has_output_mark(file)) {
+            throw Error(file.string() + ": exists and was not written by rtlab (no " +
+                        std::string(output_mark) + " attribute); remove it or choose another name");
+        }
+        return t;
+    case fs::file_type::directory:
+        throw Error(file.string() + ": is a folder, not an output file");
     default:
         throw Error(file.string() +
                     ": cannot write to this kind of file (not a regular file, FIFO "
                     "or device)");
     }
-    return t;
 }
 
 /// SIGINT and SIGTERM remove every temporary file being written, print "<program>: interrupted
@@ -225,7 +239,10 @@ public:
     }
     const std::filesystem::path& path() const { return path_; }
     /// Renames the temporary over the target; throws Error naming the output on failure.
+    /// Marks the temporary as rtlab's own output (output_mark; where the file system has no user
+    /// extended attributes the output stays unmarked, so a later run will not replace it).
     void commit() {
+        ::setxattr(path_.c_str(), output_mark, "1", 1, 0);
         std::error_code ec;
         std::filesystem::rename(path_, target_, ec);
         if (ec) {

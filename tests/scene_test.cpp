@@ -133,8 +133,12 @@ TEST_CASE("scenes round-trip through save_scene and load_scene", "[scene][io]") 
         save_scene(s, dir.path / "same.json", false);
         CHECK(load_scene(dir.path / "same.json") == s);
     }
-    SECTION("saving again over an existing file") {
-        save_scene(s, dir.path / "s.json", false);
+    SECTION("saving again over its own earlier output, never over a file rtlab did not write") {
+        save_scene(Scene{}, dir.path / "again.json", false);
+        save_scene(s, dir.path / "again.json", false);
+        CHECK(load_scene(dir.path / "again.json") == s);
+        CHECK_THROWS_WITH(save_scene(Scene{}, dir.path / "s.json", false),
+                          Catch::Contains("s.json: exists and was not written by rtlab"));
         CHECK(load_scene(dir.path / "s.json") == s);
     }
     SECTION("a mesh without a file needs write_meshes") {

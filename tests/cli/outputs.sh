@@ -14,21 +14,42 @@ wait $reader
 [[ $(stat -c %s "$out_dir/fifo.received") -eq 3200 ]] ||
     { echo "FAIL (outputs fifo): reader got $(stat -c %s "$out_dir/fifo.received") bytes, not 3200"; fail=1; }
 
-# -o a symbolic link: the link stays, its target is replaced (relative link into a subfolder).
+# Only new files and rtlab's own outputs are replaced (rtlab runs as root on shared machines).
+# Its own: a second run over the first's output replaces it, and every output carries the mark.
 mkdir -p "$out_dir/real"
-echo old >"$out_dir/real/target.rays"
+expect_ok "outputs: rays" rays --scene "$out_dir/s.json" --count 10 -o "$out_dir/real/target.rays"
+chmod 600 "$out_dir/real/target.rays"
+expect_ok "outputs: rays over rtlab's own output" rays --scene "$out_dir/s.json" --count 20 \
+    -o "$out_dir/real/target.rays"
+[[ $(stat -c %s:%a "$out_dir/real/target.rays") == 640:600 ]] ||
+    { echo "FAIL (outputs own): not replaced, or mode lost: $(stat -c %s:%a "$out_dir/real/target.rays")"; fail=1; }
+python3 -c 'import os, sys; os.getxattr(sys.argv[1], "user.rtlab.output")' "$out_dir/real/target.rays" ||
+    { echo "FAIL (outputs own): no user.rtlab.output mark"; fail=1; }
+# A regular file rtlab did not write is refused and left as it was.
+echo notes >"$out_dir/real/notes.rays"
+expect_error "outputs: rays over a file that is not rtlab's" rays --scene "$out_dir/s.json" \
+    --count 10 -o "$out_dir/real/notes.rays"
+grep -q "notes.rays: exists and was not written by rtlab" "$tmp/err" ||
+    { echo "FAIL (outputs foreign): $(cat "$tmp/err")"; fail=1; }
+[[ $(cat "$out_dir/real/notes.rays") == notes ]] || { echo "FAIL (outputs foreign): file changed"; fail=1; }
+# A symbolic link to a regular file (even rtlab's own) or to nothing is refused: link and
+# target stay as they were, nothing is created.
 ln -s real/target.rays "$out_dir/link.rays"
-expect_ok "outputs: rays through a symlink" rays --scene "$out_dir/s.json" --count 10 \
+expect_error "outputs: rays through a symlink" rays --scene "$out_dir/s.json" --count 10 \
     -o "$out_dir/link.rays"
-[[ -L $out_dir/link.rays ]] || { echo "FAIL (outputs symlink): the link was replaced"; fail=1; }
-[[ $(stat -c %s "$out_dir/real/target.rays") -eq 320 ]] ||
-    { echo "FAIL (outputs symlink): target not replaced"; fail=1; }
-# A dangling link: its target is created.
+grep -q "link.rays: is a symbolic link" "$tmp/err" || { echo "FAIL (outputs symlink): $(cat "$tmp/err")"; fail=1; }
+[[ -L $out_dir/link.rays && $(stat -c %s "$out_dir/real/target.rays") -eq 640 ]] ||
+    { echo "FAIL (outputs symlink): link or target changed"; fail=1; }
 ln -s real/new.hits "$out_dir/dangling.hits"
-expect_ok "outputs: trace --hits through a dangling symlink" trace --scene "$out_dir/s.json" \
+expect_error "outputs: trace --hits through a dangling symlink" trace --scene "$out_dir/s.json" \
     --rays "$out_dir/real/target.rays" --hits "$out_dir/dangling.hits"
-[[ -L $out_dir/dangling.hits && $(stat -c %s "$out_dir/real/new.hits") -eq 160 ]] ||
+[[ -L $out_dir/dangling.hits && ! -e $out_dir/real/new.hits ]] ||
     { echo "FAIL (outputs dangling symlink): link or new target wrong"; fail=1; }
+# A link to a device is written into (nothing is replaced).
+ln -s /dev/null "$out_dir/null.hits"
+expect_ok "outputs: trace --hits through a link to /dev/null" trace --scene "$out_dir/s.json" \
+    --rays "$out_dir/real/target.rays" --hits "$out_dir/null.hits"
+[[ -L $out_dir/null.hits ]] || { echo "FAIL (outputs link to device): link replaced"; fail=1; }
 
 # Character devices are written into, never replaced (CI runs as root, where a rename would
 # succeed and turn /dev/null into a regular file).
