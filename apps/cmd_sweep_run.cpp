@@ -65,13 +65,16 @@ pid_t spawn_shard(const sweep::Planned& p, std::size_t k, int cpus) {
     argv.push_back(nullptr);
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    // O_NOFOLLOW: a link planted in the folder (e.g. to /etc/passwd) is never appended through.
+    posix_spawn_file_actions_addopen(&fa, 1, log.c_str(),
+                                     O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW, 0644);
     posix_spawn_file_actions_adddup2(&fa, 1, 2);
     pid_t pid = 0;
     const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) {
-        throw Error(fmt::format("sweep run: cannot start {} ({})", exe, std::strerror(rc)));
+        throw Error(fmt::format("sweep run: cannot start {} with its log {} ({})", exe, log,
+                                std::strerror(rc)));
     }
     return pid;
 }

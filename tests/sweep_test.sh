@@ -34,6 +34,16 @@ fi
 "$RTLAB" sweep run "$small" -o "$tmp/a" --jobs 2 2>"$tmp/a2.err"
 grep -q "27 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
 
+# A shard log that is a symbolic link (planted in the folder) is never written through: the run
+# stops with a one-line error naming the log, and the link's target is unchanged.
+mkdir -p "$tmp/linklog/logs"
+echo precious >"$tmp/victim"
+ln -s "$tmp/victim" "$tmp/linklog/logs/shard-0000.log"
+"$RTLAB" sweep run "$small" -o "$tmp/linklog" 2>"$tmp/linklog.err" && fail "sweep run wrote through a log link"
+grep -q "shard-0000.log (Too many levels of symbolic links)" "$tmp/linklog.err" ||
+    { cat "$tmp/linklog.err"; fail "no one-line error naming the log link"; }
+[[ $(cat "$tmp/victim") == precious ]] || fail "the log link's target was written"
+
 # A second folder, two shards at a time and 4 shards: the same table but timings.
 "$RTLAB" sweep run "$small" -o "$tmp/b" --jobs 2 --shards 4 2>/dev/null
 "$RTLAB" sweep merge "$tmp/b" -o "$tmp/b/merged" >/dev/null || fail "merge b"
