@@ -42,7 +42,7 @@ import time
 
 import report_grid2
 import report_issue12
-from report_common import import_pyplot, provenance, prov_line, load_rows
+from report_common import import_pyplot, provenance, prov_line, load_rows, write_text
 from report_methods import SETS, MethodSections
 from report_structures import StructureSections
 
@@ -109,8 +109,7 @@ def write_markdown(path, generated, begin=BEGIN, end=END):
         text = old.rstrip("\n") + "\n\n" + generated
     else:
         text = "# Results\n\n" + generated
-    with open(path, "w") as f:
-        f.write(text)
+    write_text(path, text)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -196,6 +195,19 @@ def self_test(plt):
         "| embree:medium | - | - | 1.7x [1.6, 1.75] | - |" in text2)
     checks["issue12 keeps the main report"] = BEGIN in text2 and "### torus" in text2
     checks["issue12 headline"] = "bvh      primary  best bvh:pair,from=pbinned" in text2
+    # Outputs are never written through a symbolic link: one-line exit, the target untouched,
+    # no temporary left.
+    target, link = os.path.join(tmp, "target.md"), os.path.join(tmp, "link.md")
+    write_text(target, "kept\n")
+    os.symlink(target, link)
+    try:
+        write_markdown(link, "generated\n")
+        refused = False
+    except SystemExit as e:
+        refused = "link.md: is a symbolic link" in str(e)
+    checks["no write through a symlink"] = (
+        refused and open(target).read() == "kept\n" and
+        not [n for n in os.listdir(tmp) if "rtlab-tmp" in n])
     failed = [k for k, ok in checks.items() if not ok]
     shutil.rmtree(tmp)
     print(f"{len(checks) - len(failed)} passed, {len(failed)} failed")
@@ -284,8 +296,7 @@ def bench_data(args):
     if args.git:
         data.setdefault("context", {})["git"] = args.git
     if args.save_json and not args.json:
-        with open(args.save_json, "w") as f:
-            json.dump(data, f, indent=1)
+        write_text(args.save_json, json.dumps(data, indent=1))
     return data, command, wall
 
 
@@ -328,9 +339,7 @@ def main():
         with open(args.sweep) as f:
             table = json.load(f)
         os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-        with open(args.out + ".tmp", "w") as f:
-            f.write(sweep_report(table, args.sweep, args.plots, plt) + "\n")
-        os.replace(args.out + ".tmp", args.out)
+        write_text(args.out, sweep_report(table, args.sweep, args.plots, plt) + "\n")
         print(f"report: wrote {args.out} (plots in {args.plots})", file=sys.stderr)
         return 0
     data, command, wall = bench_data(args)

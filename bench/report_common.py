@@ -1,7 +1,10 @@
 """Helpers of bench/report.py: provenance (command, git revision, compiler, CPU), reading
-Google Benchmark JSON rows, number formatting, the throughput bar chart and the Pareto plot."""
+Google Benchmark JSON rows, number formatting, output files, the throughput bar chart and the
+Pareto plot."""
 
+import itertools
 import math
+import os
 import platform
 import re
 import subprocess
@@ -20,6 +23,53 @@ def import_pyplot():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
+
+
+# ---------------------------------------------------------------------------------------------
+# Output files: as rtlab's (base/atomic_file.h, docs/reliability.md), written completely or not at
+# all and never through a symbolic link or over a special file (the reports run as root on shared
+# machines). Unlike rtlab, they replace regular files they did not write: regenerating the
+# checked-in docs/results.md and its plots is their job.
+
+_tmp_counter = itertools.count()
+
+
+def replace_file(path, write):
+    """Calls write(tmp) with a new temporary beside `path` (same extension, for writers that pick
+    the format by it) and renames it over `path`; exits with one line naming `path` when it is a
+    symbolic link or exists and is not a regular file. The temporary is removed on any error."""
+    if os.path.islink(path):
+        sys.exit(f"report: {path}: is a symbolic link; the report does not write through links")
+    if os.path.exists(path) and not os.path.isfile(path):
+        sys.exit(f"report: {path}: exists and is not a regular file")
+    folder, name = os.path.split(os.path.abspath(path))
+    stem, ext = os.path.splitext(name)
+    while True:
+        tmp = os.path.join(folder, f".{stem}.rtlab-tmp-{os.getpid()}-{next(_tmp_counter)}{ext}")
+        try:
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            break
+        except FileExistsError:
+            continue
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def write_text(path, text):
+    """Writes `text` to `path` through replace_file."""
+    def write(tmp):
+        with open(tmp, "w") as f:
+            f.write(text)
+    replace_file(path, write)
+
+
+def save_figure(fig, path):
+    """fig.savefig(path) through replace_file."""
+    replace_file(path, fig.savefig)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -185,7 +235,7 @@ def throughput_bars(plt, path, kinds, series, title, caption, bottom):
     ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
     fig.text(0.01, 0.005, caption, fontsize=7, color="dimgrey")
     fig.tight_layout(rect=(0, bottom, 1, 1))
-    fig.savefig(path)
+    save_figure(fig, path)
     plt.close(fig)
 
 
@@ -261,7 +311,7 @@ def pareto_plot(plt, path, title, xlabel, ylabel, labels, xs, ys, caption, zero_
     ax.legend(handles=handles, fontsize=8, loc="best", framealpha=0.85)
     fig.text(0.01, 0.005, caption, fontsize=7, color="dimgrey")
     fig.tight_layout(rect=(0, 0.06, 1, 1))
-    fig.savefig(path)
+    save_figure(fig, path)
     plt.close(fig)
 
 

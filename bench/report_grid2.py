@@ -9,7 +9,7 @@ against measured cost, one point per structure and scene and ray kind).
 import os
 import re
 
-from report_common import fmt, num
+from report_common import fmt, num, save_figure
 
 BEGIN = "<!-- grid2:begin -->"
 END = "<!-- grid2:end -->"
@@ -176,7 +176,7 @@ class Grid2:
         ax.legend(handles=handles, fontsize=7, loc="upper left")
         fig.text(0.01, 0.005, caption, fontsize=6)
         fig.tight_layout(rect=(0, 0.03, 1, 1))
-        fig.savefig(path)
+        save_figure(fig, path)
         plt.close(fig)
 
 

@@ -5,6 +5,7 @@ import os
 
 from report_common import (
     prov_caption,
+    save_figure,
     num,
     fmt,
     fmt_rate,
@@ -137,7 +138,7 @@ class MethodSections:
         fig.text(0.01, 0.005, prov_caption(self.prov), fontsize=7, color="dimgrey")
         fig.tight_layout(rect=(0, 0.03, 1, 1))
         path = os.path.join(self.plots, "pareto-roots.png")
-        fig.savefig(path)
+        save_figure(fig, path)
         plt.close(fig)
         self.image(path, "Pareto plot, root finders")
 

@@ -9,6 +9,7 @@ import shutil
 
 from report_common import (
     prov_caption,
+    save_figure,
     throughput_bars,
     to_ms,
     num,
@@ -214,7 +215,7 @@ class StructureSections:
         fig.tight_layout(rect=(0, (0.35 + 0.2 * legend_rows) / (4.2 * nrows + 1.2) + 0.01, 1,
                                0.97))
         path = os.path.join(self.plots, "scaling.png")
-        fig.savefig(path)
+        save_figure(fig, path)
         plt.close(fig)
         self.image(path, "Scaling, log-log")
 

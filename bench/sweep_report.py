@@ -9,7 +9,7 @@ host and CPU from the results' provenance.
 import os
 import re
 
-from report_common import fmt, throughput_bars
+from report_common import fmt, save_figure, throughput_bars
 
 TIMED = "mrays_per_s"
 
@@ -151,7 +151,7 @@ def _sweep_section(lines, plt, plots, cases, prov):
         fig.text(0.01, 0.005, _caption(prov), fontsize=7, color="dimgrey")
         fig.tight_layout(rect=(0, 0.07, 1, 0.95))
         path = os.path.join(plots, f"sweep-{_safe(structure)}-{_safe(key)}.png")
-        fig.savefig(path)
+        save_figure(fig, path)
         plt.close(fig)
         lines += [f"![{structure}: {key}]({path})", ""]
 
@@ -223,7 +223,7 @@ def _crosscheck_section(lines, plt, plots, cases, prov):
         fig.text(0.01, 0.01, _caption(prov), fontsize=6)
         fig.tight_layout(rect=(0, 0.07, 1, 1))
         path = os.path.join(plots, f"sweep-crosscheck-{_safe(prim)}.png")
-        fig.savefig(path)
+        save_figure(fig, path)
         plt.close(fig)
         lines += [f"![{prim}: error against run time]({path})", ""]
 
