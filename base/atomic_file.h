@@ -110,6 +110,12 @@ inline bool has_output_mark(const std::filesystem::path& file) {
     return ::getxattr(file.c_str(), output_mark, nullptr, 0) >= 0;
 }
 
+/// Marks `file` as rtlab's own output (for outputs another library wrote, e.g. Google
+/// Benchmark's --benchmark_out); without user extended attributes it stays unmarked.
+inline void mark_output(const std::filesystem::path& file) {
+    ::setxattr(file.c_str(), output_mark, "1", 1, 0);
+}
+
 /// Where an output goes: `file` itself, and whether it is a special file (FIFO or device, also
 /// reached through a symbolic link) that is written into rather than replaced.
 struct OutputTarget {
@@ -242,7 +248,7 @@ public:
     /// Marks the temporary as rtlab's own output (output_mark; where the file system has no user
     /// extended attributes the output stays unmarked, so a later run will not replace it).
     void commit() {
-        ::setxattr(path_.c_str(), output_mark, "1", 1, 0);
+        mark_output(path_);
         std::error_code ec;
         std::filesystem::rename(path_, target_, ec);
         if (ec) {

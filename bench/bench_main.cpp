@@ -1,11 +1,13 @@
 // rtlab_bench: one Google Benchmark executable for every suite in bench/.
 // Our own flags, --quick and --accel SPEC, are removed before Google Benchmark parses the rest.
 #include "accel/any_accel.h"
+#include "base/atomic_file.h"
 #include "bench/benchmarks.h"
 
 #include <benchmark/benchmark.h>
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -58,6 +60,7 @@ std::vector<std::string> rtlab::bench::bench_specs() {
 
 int main(int argc, char** argv) {
     int kept = 1;
+    std::string out_file;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string_view arg(argv[i]);
@@ -76,6 +79,12 @@ int main(int argc, char** argv) {
             } else {
                 if (arg == "--help") {
                     std::cout << own_flags;
+                }
+                if (arg.starts_with("--benchmark_out=")) {
+                    // The same rule as rtlab's outputs (base/atomic_file.h): a new file, rtlab's
+                    // own earlier output or a device; never through a link or over another file.
+                    out_file = std::string(arg.substr(16));
+                    rtlab::check_output_path(out_file);
                 }
                 argv[kept++] = argv[i];
             }
@@ -105,6 +114,9 @@ int main(int argc, char** argv) {
     }
     const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
+    if (!out_file.empty() && std::filesystem::is_regular_file(out_file)) {
+        rtlab::mark_output(out_file);  // Google Benchmark wrote it: marked as rtlab's own
+    }
     if (ran == 0) {  // a filter that matches nothing is a mistake, not a successful run
         std::cerr << "rtlab_bench: no benchmark matches the filter (list them with "
                      "--benchmark_list_tests)\n";

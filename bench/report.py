@@ -266,8 +266,8 @@ def bench_data(args):
         if not os.path.exists(args.bench):
             sys.exit(f"report: no benchmark executable at {args.bench} (build the release "
                      "preset, or pass --json)")
-        fd, tmp = tempfile.mkstemp(suffix=".json")
-        os.close(fd)
+        folder = tempfile.mkdtemp(prefix="rtlab-report-")
+        tmp = os.path.join(folder, "bench.json")  # a new file: rtlab_bench writes only those
         cmd = [args.bench, f"--benchmark_out={tmp}", "--benchmark_out_format=json"]
         if args.quick:
             cmd.append("--quick")
@@ -282,10 +282,11 @@ def bench_data(args):
         res = subprocess.run(cmd, stdout=sys.stderr)
         elapsed = time.time() - start
         if res.returncode != 0:
+            shutil.rmtree(folder)
             sys.exit(f"report: rtlab_bench exited with {res.returncode}")
         with open(tmp) as f:
             data = json.load(f)
-        os.remove(tmp)
+        shutil.rmtree(folder)
         wall = f"{elapsed:.1f} s"
         data.setdefault("context", {})["rtlab_report_wall"] = wall
         shown = [args.bench] + (["--quick"] if args.quick else []) + (
