@@ -46,8 +46,8 @@ Command add_rays(CLI::App& root) {
         ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
     sub->add_option("--seed", a->seed, "Seed (default 1)");
     sub->add_option("-o,--output", a->out,
-                    "Ray file to write (a FIFO or device is written into; a symbolic link's "
-                    "target is replaced)")
+                    "Ray file to write: a new file or rtlab's own earlier output (a FIFO or "
+                    "device is written into; other files and links are refused)")
         ->required();
     sub->add_option("--max-memory", a->max_memory_mib,
                     "Refuse counts whose estimate exceeds this many MiB (default half of RAM)");
