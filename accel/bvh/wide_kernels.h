@@ -9,6 +9,7 @@
 #include "base/simd_lanes.h"
 #include "intersect/box/slabs.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
