@@ -8,7 +8,7 @@ void any_counted(const std::vector<AnyPrimSet>& sets,
                  std::span<const Rayf> rays,
                  std::span<std::uint32_t> blocker,
                  TraversalStats& stats) {
-    BatchSink sink{&stats};
+    CountSink sink{&stats};
     trace_batch(sets, robust, AnyHitQuery{rays, blocker}, sink);
 }
 

@@ -49,31 +49,26 @@ struct NoSink {
     void finish() {}
 };
 
-// One TraversalStats per thread, all added to *out at the end.
-struct BatchSink {
-    TraversalStats* out;
+// Counting: ray i's counts into per_ray[i] when per_ray is given, else into one TraversalStats
+// per thread, all added to *out at the end. One sink for both, so the counted loop of a query is
+// compiled once (each instantiation of the loop over every set and structure costs minutes).
+struct CountSink {
+    TraversalStats* out = nullptr;
+    std::span<TraversalStats> per_ray{};
     tbb::enumerable_thread_specific<TraversalStats> counts{};
     struct Local {
         TraversalStats& thread;
-        TraversalStats& operator[](std::size_t) { return thread; }
+        std::span<TraversalStats> per_ray;
+        TraversalStats& operator[](std::size_t i) { return per_ray.empty() ? thread : per_ray[i]; }
     };
-    Local local() { return {counts.local()}; }
+    Local local() { return {counts.local(), per_ray}; }
     void finish() {
-        for (const TraversalStats& c : counts) {
-            *out += c;
+        if (out != nullptr) {
+            for (const TraversalStats& c : counts) {
+                *out += c;
+            }
         }
     }
-};
-
-// Each ray's own counts, per_ray[i] for rays[i].
-struct PerRaySink {
-    std::span<TraversalStats> per_ray;
-    struct Local {
-        std::span<TraversalStats> per_ray;
-        TraversalStats& operator[](std::size_t i) { return per_ray[i]; }
-    };
-    Local local() { return {per_ray}; }
-    void finish() {}
 };
 
 // True when set s of method M on structure A is traced leaf by leaf with M's SIMD leaf kernel.
@@ -325,7 +320,9 @@ struct AnyHitQuery {
 };
 
 // Rays [begin, end) of set s: in one block through the wide BVH traversal with the leaf kernel
-// inlined where that applies, else ray by ray.
+// inlined where that applies, else ray by ray. Counted passes take the ray-by-ray path with the
+// same leaf kernels as callbacks (the same visits and counts, tests/*_soa_test.cpp): timing never
+// counts, and the inlined kernels, once per SIMD level, are the bulk of a batch unit's build.
 template <bool IsRobust, class Query, class M, class A, class Local>
 void trace_range(const Query& query,
                  const PrimSet<M>& s,
@@ -333,7 +330,7 @@ void trace_range(const Query& query,
                  std::size_t begin,
                  std::size_t end,
                  Local& local) {
-    if constexpr (has_leaf_kernel<M> && is_wide_bvh<A>) {
+    if constexpr (has_leaf_kernel<M> && is_wide_bvh<A> && std::is_same_v<Local, NoSink::Local>) {
         if (uses_leaf_kernel(s, acc)) {
             wide_leaf_block<IsRobust>(query, s, acc, begin, end, local);
             return;
