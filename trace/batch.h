@@ -1,5 +1,5 @@
 #pragma once
-// SceneTracer's batch entry points (internal to trace/), one translation unit each
+// SceneTracer's batch entry points (internal to trace/), one translation unit per query and sink
 // (trace/batch_*.cpp): every set in order, its rays in parallel with TBB, its method and
 // structure static. Each ray is independent, so results do not depend on the thread count.
 
