@@ -7,11 +7,11 @@
 namespace rtlab {
 
 /// Structures whose nodes take at least this many bytes prefetch children during traversal; below
-/// it the nodes stay in the L2 cache (2 MiB per core on the Xeon of docs/results.md) and the
-/// prefetches only cost instructions. Measured on bvh8 (rtlab trace, one thread): sphere flakes
-/// SF 4 (132 KB) -6% and SF 5 (1.3 MB) -1% with prefetching, the tessellated SF 3 (3.4 MB) +2-4%
-/// and SF 4 (1.65M triangles) +14-22%.
-inline constexpr std::size_t prefetch_min_bytes = std::size_t{2} << 20;
+/// it the nodes stay in the L2 cache and the prefetches only cost instructions. Measured on bvh8,
+/// one thread: on the Xeon of docs/results.md (2 MiB L2) sphere flakes SF 4 (132 KB) -6% and SF 5
+/// (1.2 MB) -1% with prefetching, the tessellated SF 3 (3.4 MB) +2-4% and SF 4 (1.65M triangles)
+/// +14-22%; on the AMD EPYC (1 MiB L2, session 43) SF 5 +2-4%, SF 4 -2-5% when always on.
+inline constexpr std::size_t prefetch_min_bytes = std::size_t{1} << 20;
 
 /// Starts fetching the cache line holding p into all cache levels (x86 prefetcht0; a hint: no
 /// fault for any address). An asm statement rather than __builtin_prefetch: GCC 12 deletes a
