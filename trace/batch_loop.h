@@ -11,9 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <type_traits>
 
 namespace rtlab::batch {
@@ -364,13 +362,10 @@ void trace_range(const Query& query,
     }
 }
 
-// body(begin, end) over [0, n) in blocks of about `grain` in parallel. Not a template: TBB's
-// parallel_for is compiled once per unit instead of once per method and structure (a quarter of
-// a batch unit's code), for one indirect call per block.
-inline void parallel_blocks(std::size_t n, FunctionRef<void(std::size_t, std::size_t)> body) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
-}
+// body(begin, end) over [0, n) in blocks of about `grain` in parallel (trace/batch_loop.cpp). Not
+// a template: TBB's parallel_for is compiled once instead of once per method and structure (a
+// quarter of a batch unit's code), for one indirect call per block.
+void parallel_blocks(std::size_t n, FunctionRef<void(std::size_t, std::size_t)> body);
 
 // The one batch loop: every set in order (its method and structure static), its rays in
 // parallel. Each ray is independent, so results do not depend on the thread count.
