@@ -30,8 +30,15 @@
 namespace rtlab {
 
 /// Every structure type (node layout) a registry row can build.
-using AccelTypes =
-    std::tuple<BruteForce, Bvh, PairBvh, WideBvh<4>, WideBvh<8>, KdTree, Grid, TwoLevelGrid>;
+using AccelTypes = std::tuple<BruteForce,
+                              Bvh,
+                              PairBvh,
+                              WideBvh<4>,
+                              WideBvh<8>,
+                              WideBvh<16>,
+                              KdTree,
+                              Grid,
+                              TwoLevelGrid>;
 
 namespace detail {
 template <class List>

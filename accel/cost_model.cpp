@@ -323,6 +323,9 @@ CostEstimate expected_cost(const WideBvh<4>& a) {
 CostEstimate expected_cost(const WideBvh<8>& a) {
     return flat_cost(flatten(a));
 }
+CostEstimate expected_cost(const WideBvh<16>& a) {
+    return flat_cost(flatten(a));
+}
 
 // The kd-tree's cells follow from the scene box and the splits on the path (pre-order nodes, the
 // below child right after its parent). Kept to the public node layout only.
@@ -385,7 +388,8 @@ CostEstimate expected_cost(const AnyAccel& a) {
 
 bool has_end_point_overlap(const AnyAccel& a) {
     return std::holds_alternative<Bvh>(a) || std::holds_alternative<PairBvh>(a) ||
-           std::holds_alternative<WideBvh<4>>(a) || std::holds_alternative<WideBvh<8>>(a);
+           std::holds_alternative<WideBvh<4>>(a) || std::holds_alternative<WideBvh<8>>(a) ||
+           std::holds_alternative<WideBvh<16>>(a);
 }
 
 double end_point_overlap(const AnyAccel& a,
@@ -394,7 +398,8 @@ double end_point_overlap(const AnyAccel& a,
     return visit_accel(a, [&](const auto& s) -> double {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> ||
-                      std::is_same_v<T, WideBvh<4>> || std::is_same_v<T, WideBvh<8>>) {
+                      std::is_same_v<T, WideBvh<4>> || std::is_same_v<T, WideBvh<8>> ||
+                      std::is_same_v<T, WideBvh<16>>) {
             return flat_epo(flatten(s), triangles, p);
         } else {
             return -1.0;

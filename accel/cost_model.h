@@ -48,6 +48,7 @@ CostEstimate expected_cost(const Bvh& a);
 CostEstimate expected_cost(const PairBvh& a);
 CostEstimate expected_cost(const WideBvh<4>& a);
 CostEstimate expected_cost(const WideBvh<8>& a);
+CostEstimate expected_cost(const WideBvh<16>& a);
 CostEstimate expected_cost(const KdTree& a);
 CostEstimate expected_cost(const Grid& a);
 CostEstimate expected_cost(const TwoLevelGrid& a);

@@ -276,7 +276,7 @@ ParamSpec with_max(ParamSpec p, double value) {
 // and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
 const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
 const ParamSpec sah_ct = with_default(bvh_ct, 4);
-// The layouts with SoA leaves (bvh4, bvh8, bvh8q, bvh:pair) build source trees that count
+// The layouts with SoA leaves (bvh4, bvh8, bvh16, bvh8q, bvh:pair) build source trees that count
 // primitives in blocks of 4, the leaves' group (one 4-lane test, half of an 8-lane one): bvh8
 // traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust
 // 0.99-1.01x; analytic SF 4 1.00-1.02x); bvh:pair traced within noise (0.98-1.03x) and built
@@ -341,6 +341,12 @@ const AccelEntry registry_rows[] = {
      {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
       morton_bits, threads},
      &layout_row<&collapse_bvh<8>>},
+    {"bvh16",
+     "16-wide BVH collapsed from a binary build by surface area, one 16-lane node test (AVX-512; "
+     "two 8-lane ones on AVX2)",
+     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
+      morton_bits, threads},
+     &layout_row<&collapse_bvh<16>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",

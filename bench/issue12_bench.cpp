@@ -61,8 +61,8 @@ std::vector<std::string> issue12_layout_specs() {
 }
 
 bool issue12_paired_layout(const std::string& spec) {
-    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh8q,") ||
-           spec.starts_with("bvh:pair,");
+    return spec.starts_with("bvh4,") || spec.starts_with("bvh8,") || spec.starts_with("bvh16,") ||
+           spec.starts_with("bvh8q,") || spec.starts_with("bvh:pair,");
 }
 
 double issue12_min_sample() {

@@ -221,7 +221,7 @@ TEST_CASE("SAH BVHs visit far fewer boxes than brute force", "[accel][agreement]
     const TraversalStats brute = count("brute");
     // Each row with its default leaf bound (8 for the SAH rows).
     const std::pair<std::string_view, std::uint64_t> rows[] = {
-        {"bvh:binned", 8}, {"bvh:sweep", 8}, {"bvh4", 8}, {"bvh8", 8}};
+        {"bvh:binned", 8}, {"bvh:sweep", 8}, {"bvh4", 8}, {"bvh8", 8}, {"bvh16", 8}};
     for (const auto& [name, max_leaf] : rows) {
         CAPTURE(name);
         const TraversalStats st = count(name);

@@ -134,7 +134,7 @@ TEST_CASE("spatial-split trees answer as brute force, binary and wide", "[accel]
     check_parts_cover(std::get<Bvh>(build_accel("bvh:sbvh", in)), soup);
     for (const std::string spec :
          {"bvh:sbvh", "bvh:sbvh,max_leaf=1", "bvh8,from=sbvh", "bvh4,from=sbvh,leaves=ids",
-          "bvh8q,from=sbvh", "bvh:pair,from=sbvh"}) {
+          "bvh8q,from=sbvh", "bvh16,from=sbvh", "bvh:pair,from=sbvh"}) {
         CAPTURE(slivers, spec);
         const AnyAccel a = build_accel(spec, in);
         REQUIRE(accel_validate(a).empty());

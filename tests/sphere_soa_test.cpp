@@ -277,7 +277,7 @@ TEST_CASE("sphere leaf kernels inlined into wide BVH traversal give the leaf-cal
         boxes.push_back(M::bounds(p));
     }
     const std::vector<Rayf> rays = test_rays(prims, seed);
-    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1"}) {
+    for (const char* spec : {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1"}) {
         const AnyAccel accel = build_accel(spec, BuildInput{boxes, {}});
         visit_accel(accel, [&](const auto& bvh) {
             if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {
@@ -337,7 +337,8 @@ TEST_CASE("SceneTracer traces spheres on bvh4/bvh8 through the SphereSoA like th
     const Traced brute = trace(scene, rays, "brute");
     // The wide BVHs inline the kernel; the pair BVH and the kd-tree (slots repeat primitives)
     // call it per leaf.
-    for (const std::string spec : {"bvh4", "bvh8", "bvh8,from=pbinned", "bvh:pair", "kdtree:sah"}) {
+    for (const std::string spec :
+         {"bvh4", "bvh8", "bvh16", "bvh8,from=pbinned", "bvh:pair", "kdtree:sah"}) {
         CAPTURE(spec);
         const Traced ids = trace(scene, rays, spec + ",leaves=ids");
         const Traced soa = trace(scene, rays, spec);

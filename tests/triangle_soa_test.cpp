@@ -207,7 +207,7 @@ TEST_CASE("leaf kernels inlined into wide BVH traversal give the leaf-callback a
     const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, seed, 700);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
-    for (const char* spec : {"bvh4", "bvh8", "bvh8,from=lbvh,max_leaf=1"}) {
+    for (const char* spec : {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1"}) {
         const AnyAccel accel = build_accel(spec, soup.input());
         visit_accel(accel, [&](const auto& bvh) {
             if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {

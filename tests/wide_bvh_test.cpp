@@ -1,7 +1,7 @@
-// Wide BVHs (BVH4, BVH8, quantised BVH8): the SIMD node test of every level the CPU runs against
-// the scalar slab test traversal uses, quantisation's enclosing boxes, collapse from every binary
-// builder, and every level's traversal against brute force and against the other levels (same
-// answers, same counts).
+// Wide BVHs (BVH4, BVH8, BVH16, quantised BVH8): the SIMD node test of every level the CPU runs
+// against the scalar slab test traversal uses, quantisation's enclosing boxes, collapse from every
+// binary builder, and every level's traversal against brute force and against the other levels
+// (same answers, same counts).
 
 #include "accel/bvh/wide_bvh.h"
 
@@ -78,7 +78,7 @@ void check_node_hits(const Node& node, unsigned slots, const std::vector<Rayf>& 
         }
         for (const SimdLevel l : runnable_levels()) {
             CAPTURE(simd_name(l));
-            alignas(32) float tn[N];
+            alignas(64) float tn[N];
             const unsigned got = node_hits_at<IsRobust>(l, node, sr, ray.tmin, ray.tmax, tn);
             REQUIRE(got == want);
             for (unsigned i = 0; i < N; ++i) {
@@ -127,7 +127,7 @@ void check_node_test(const test::Soup& soup, const std::vector<Rayf>& rays) {
                 filled.set(used++, b, 0, 0);
             }
         }
-        check_node_hits<IsRobust>(node, (1u << N) - 1, rays);
+        check_node_hits<IsRobust>(node, (1u << N) - 1u, rays);
         if constexpr (N == 8) {
             const QWideNode8 q = quantize_wide_node(filled);
             check_quantised(filled, q);
@@ -146,11 +146,15 @@ TEST_CASE(
     check_node_test<true, 4>(soup, rays);
     check_node_test<false, 8>(soup, rays);
     check_node_test<true, 8>(soup, rays);
+    check_node_test<false, 16>(soup, rays);
+    check_node_test<true, 16>(soup, rays);
     // Boxes on lattice planes, rays on their faces and along axes.
     const test::Soup lattice = test::lattice_soup({0, 0, 0.5f});
     const std::vector<Rayf> lrays = test::random_rays(lattice, seed, 300);
     check_node_test<false, 8>(lattice, lrays);
     check_node_test<true, 8>(lattice, lrays);
+    check_node_test<false, 16>(lattice, lrays);
+    check_node_test<true, 16>(lattice, lrays);
 }
 
 TEST_CASE("quantised nodes enclose extreme boxes tightly", "[accel][wide]") {
@@ -217,6 +221,45 @@ TEST_CASE("the 8-lane child order network sorts like lane_order_key", "[accel][w
     CHECK(lane_order_key(1.0f, 7) < lane_order_key(2.0f, 0));
 }
 
+TEST_CASE("16-lane child order keys sort by distance, then lane", "[accel][wide][simd]") {
+    test::Rng rng(12);
+    for (int round = 0; round < 2000; ++round) {
+        alignas(64) float t[16];
+        for (float& x : t) {
+            // Ties and values a few ulps apart (within 16 ulps the lane decides).
+            x = round % 2 == 0
+                    ? static_cast<float>(rng.below(4))
+                    : std::nextafter(1.0f, 2.0f) + static_cast<float>(rng.below(64)) * 1e-7f;
+        }
+        const unsigned mask = 1u + rng.below(65535);
+        std::int32_t got[16];
+        const unsigned k = sort_lane_keys_scalar<16>(t, mask, got);
+        REQUIRE(k == static_cast<unsigned>(std::popcount(mask)));
+        unsigned seen = 0;
+        for (unsigned i = 0; i < k; ++i) {
+            const auto lane = static_cast<unsigned>(got[i]) & 15u;
+            REQUIRE(((mask >> lane) & 1u) != 0);
+            seen |= 1u << lane;
+            REQUIRE(got[i] == lane_order_key<16>(t[lane], lane));
+            if (i > 0) {
+                const auto prev = static_cast<unsigned>(got[i - 1]) & 15u;
+                REQUIRE(got[i - 1] < got[i]);
+                // Nearer first, but for distances within 16 ulps (these are >= 0), which go in
+                // lane order.
+                if (t[prev] >= t[lane]) {
+                    REQUIRE(std::bit_cast<std::int32_t>(t[prev]) -
+                                std::bit_cast<std::int32_t>(t[lane]) <
+                            16);
+                    REQUIRE(prev < lane);
+                }
+            }
+        }
+        REQUIRE(seen == mask);
+    }
+    CHECK(lane_order_key<16>(1.0f, 15) < lane_order_key<16>(2.0f, 0));
+    CHECK(lane_order_key<16>(-1.0f, 15) < lane_order_key<16>(-0.5f, 0));
+}
+
 TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees", "[accel][wide]") {
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 7, 2000);
     // The binary tree's settings (the wide rows default to larger leaves, Ct and blocks; the
@@ -225,7 +268,7 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
     for (const std::string from : {"binned", "sweep", "median", "lbvh"}) {
         const AnyAccel binary = build_accel(test::spec_with("bvh:" + from, source), soup.input());
         const AccelInfo bi = accel_info(binary);
-        for (const char* wide : {"bvh4", "bvh8", "bvh8q"}) {
+        for (const char* wide : {"bvh4", "bvh8", "bvh16", "bvh8q"}) {
             CAPTURE(from, wide);
             const AnyAccel w =
                 build_accel(test::spec_with(wide, source) + ",from=" + from, soup.input());
@@ -273,17 +316,19 @@ TEST_CASE("wide BVH children are ordered by surface area, largest first", "[acce
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 9, 3000);
     check_area_order<4>(soup, "bvh4");
     check_area_order<8>(soup, "bvh8");
+    check_area_order<16>(soup, "bvh16");
 }
 
 TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") {
     // Deep enough that the subtrees below the serial top levels are collapsed by parallel tasks.
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 20000);
-    for (const std::string wide : {"bvh4", "bvh8", "bvh8q"}) {
+    for (const std::string wide : {"bvh4", "bvh8", "bvh16", "bvh8q"}) {
         CAPTURE(wide);
         const std::string spec = wide + ",max_leaf=4,ct=1,threads=";
         const AnyAccel one = build_accel(spec + "1", soup.input());
         REQUIRE(accel_validate(one).empty());
-        REQUIRE(accel_info(one).max_depth > 4);
+        // Below the collapse's serial top levels (3 for BVH4, 2 for BVH8, 1 for BVH16).
+        REQUIRE(accel_info(one).max_depth > (wide == "bvh16" ? 2 : 4));
         for (const char* threads : {"2", "4", "0"}) {
             CAPTURE(threads);
             CHECK(build_accel(spec + threads, soup.input()) == one);
@@ -336,8 +381,8 @@ TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with th
     CAPTURE(static_cast<int>(kind), count, seed);
     const test::Soup soup = test::random_soup(kind, seed, count);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
-    for (const char* spec :
-         {"bvh4", "bvh8", "bvh8q", "bvh8,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
+    for (const char* spec : {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,from=lbvh,max_leaf=1",
+                             "bvh16,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
         CAPTURE(spec);
         const AnyAccel accel = build_accel(spec, soup.input());
         REQUIRE(accel_validate(accel).empty());

@@ -151,5 +151,6 @@ std::string WideBvh<N>::validate_quantized() const {
 
 template struct WideBvh<4>;
 template struct WideBvh<8>;
+template struct WideBvh<16>;
 
 }  // namespace rtlab

@@ -1,5 +1,5 @@
 #pragma once
-// Wide BVHs (BVH4, BVH8) collapsed from any binary build (accel/bvh/wide_collapse.cpp): each
+// Wide BVHs (BVH4, BVH8, BVH16) collapsed from any binary build (accel/bvh/wide_collapse.cpp): each
 // wide node pulls up the grandchildren of largest surface area until it holds N children, so the
 // nodes most rays reach are opened first (SAH-aware collapse as in Embree's BVH4/8 builders).
 // Traversal clips the ray against all N child boxes with one SIMD slab test (accel/bvh/
@@ -22,7 +22,7 @@
 
 namespace rtlab {
 
-/// A BVH with N (4 or 8) children per node; nodes[0] is the root (holding the binary root's
+/// A BVH with N (4, 8 or 16) children per node; nodes[0] is the root (holding the binary root's
 /// children, or the binary root itself when that is a leaf).
 template <unsigned N>
 struct WideBvh {
@@ -138,7 +138,7 @@ private:
     }
 };
 
-/// BVH4 and BVH8 from a binary BVH (accel/bvh/wide_collapse.cpp); taken by value so that a
+/// BVH4, BVH8 and BVH16 from a binary BVH (accel/bvh/wide_collapse.cpp); taken by value so that a
 /// build's temporary source gives up its prim_ids instead of having them copied.
 template <unsigned N>
 WideBvh<N> collapse_bvh(Bvh binary, ChildOrder order = ChildOrder::area);
@@ -149,9 +149,12 @@ WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order = ChildOrder::area);
 
 extern template struct WideBvh<4>;
 extern template struct WideBvh<8>;
+extern template struct WideBvh<16>;
 
 static_assert(Accel<WideBvh<4>>);
 static_assert(Accel<WideBvh<8>>);
-static_assert(LeafRangeAccel<WideBvh<4>> && LeafRangeAccel<WideBvh<8>>);
+static_assert(Accel<WideBvh<16>>);
+static_assert(LeafRangeAccel<WideBvh<4>> && LeafRangeAccel<WideBvh<8>> &&
+              LeafRangeAccel<WideBvh<16>>);
 
 }  // namespace rtlab

@@ -1,5 +1,5 @@
-// collapse_bvh: a binary BVH into a BVH4 or BVH8. Each wide node starts from a binary node's two
-// children and repeatedly opens the inner child of largest surface area (the one a random ray
+// collapse_bvh: a binary BVH into a BVH4, BVH8 or BVH16. Each wide node starts from a binary node's
+// two children and repeatedly opens the inner child of largest surface area (the one a random ray
 // reaches most often, so opening it saves the most node visits under the SAH) until it holds N
 // children or only leaves (greedy SAH collapse as in Wald, Benthin & Boulos 2008 and Embree's
 // BVH4/8 builders). With ChildOrder::area the children are then sorted by surface area, largest
@@ -109,9 +109,9 @@ WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order) {
     if (bvh.nodes.empty()) {
         return w;
     }
-    // The top levels serially, down to the wide depth with up to 64 nodes (N^depth), each
-    // subtree below them by its own task.
-    constexpr std::uint32_t task_depth = N == 8 ? 2 : 3;
+    // The top levels serially, down to the wide depth with up to 64 nodes (N^depth; 16 for
+    // BVH16), each subtree below them by its own task.
+    constexpr std::uint32_t task_depth = N == 16 ? 1 : N == 8 ? 2 : 3;
     bvh_detail::convert_tree(
         w.nodes, WideNode<N>::empty(), task_depth,
         [&](const bvh_detail::ConvertItem& it, LargeVector<WideNode<N>>& out, const auto& push) {
@@ -130,5 +130,6 @@ WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order) {
 
 template WideBvh<4> collapse_bvh<4>(Bvh, ChildOrder);
 template WideBvh<8> collapse_bvh<8>(Bvh, ChildOrder);
+template WideBvh<16> collapse_bvh<16>(Bvh, ChildOrder);
 
 }  // namespace rtlab

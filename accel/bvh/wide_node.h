@@ -1,7 +1,8 @@
 #pragma once
-// The node of the wide BVHs (BVH4, BVH8): N child boxes stored structure-of-arrays (one row of N
-// floats per box plane), so one SIMD slab test clips the ray against every child at once (Wald,
-// Benthin & Boulos 2008, "Getting rid of packets"; as Embree's BVH4/8 and tinybvh's BVH8_CPU).
+// The node of the wide BVHs (BVH4, BVH8, BVH16): N child boxes stored structure-of-arrays (one row
+// of N floats per box plane), so one SIMD slab test clips the ray against every child at once
+// (Wald, Benthin & Boulos 2008, "Getting rid of packets"; as Embree's BVH4/8 and tinybvh's
+// BVH8_CPU).
 
 #include "intersect/bounds.h"
 
@@ -16,7 +17,7 @@ namespace rtlab {
 /// first.
 template <unsigned N>
 struct alignas(64) WideNode {
-    static_assert(N == 4 || N == 8, "wide nodes hold 4 or 8 children");
+    static_assert(N == 4 || N == 8 || N == 16, "wide nodes hold 4, 8 or 16 children");
     static constexpr unsigned width = N;
     static constexpr std::uint32_t empty_slot = 0xffffffffu;
 
@@ -61,7 +62,8 @@ struct alignas(64) WideNode {
     friend bool operator==(const WideNode&, const WideNode&) = default;
 };
 
-static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
+static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
+              sizeof(WideNode<16>) == 512);
 
 /// A WideNode<8> with its child boxes quantised to one byte per plane on a per-node grid (Ylitie,
 /// Karras & Laine 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs";
