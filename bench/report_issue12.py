@@ -260,15 +260,19 @@ class Issue12:
         return out
 
     def headline(self):
-        """Each structure family's best layout against Embree medium (mesh scene, 1 thread)."""
+        """Each structure family's best layout against Embree medium (mesh scene, 1 thread): by
+        paired ratio where the run paired the family (printed beside the medians' ratio), else by
+        median rays/s."""
         out = []
         for fam in sorted({family(a) for a in self.ours}):
             for kind in KINDS:
-                r, a = self.best(self.mesh, kind, lambda s, f=fam: family(s) == f)
+                r, a = self.best_vs_embree(self.mesh, kind, lambda s, f=fam: family(s) == f)
                 e = self.rate("embree:medium", self.mesh, kind)
+                p = self.pair(a, self.mesh, kind)
+                paired = f"; paired {fmt(p[0])}x [{fmt(p[1])}, {fmt(p[2])}]" if p else ""
                 out.append(f"{fam:8s} {kind:8s} best {short(a) if a else '-':28s} "
                            f"{fmt((r or 0) / 1e6)} Mrays/s = {fmt(self.ratio(r, e))}x Embree "
-                           f"medium ({fmt((e or 0) / 1e6)} Mrays/s)")
+                           f"medium ({fmt((e or 0) / 1e6)} Mrays/s){paired}")
         return out
 
 
