@@ -28,7 +28,7 @@ docs/plots/cost-model-scatter.png.
 
 Example: python3 bench/report.py --bench build/release/bench/rtlab_bench --quick \\
              --out docs/results.md --plots docs/plots
-         python3 bench/report.py --suite issue12 --out docs/results.md   (6-7 minutes idle)
+         python3 bench/report.py --suite issue12 --out docs/results.md   (about 21 minutes idle)
 Smoke test (synthetic data, no executable needed): python3 bench/report.py --self-test
 """
 import argparse
