@@ -317,15 +317,13 @@ CostEstimate expected_cost(const Bvh& a) {
 CostEstimate expected_cost(const PairBvh& a) {
     return flat_cost(flatten(a));
 }
-CostEstimate expected_cost(const WideBvh<4>& a) {
+template <unsigned N>
+CostEstimate expected_cost(const WideBvh<N>& a) {
     return flat_cost(flatten(a));
 }
-CostEstimate expected_cost(const WideBvh<8>& a) {
-    return flat_cost(flatten(a));
-}
-CostEstimate expected_cost(const WideBvh<16>& a) {
-    return flat_cost(flatten(a));
-}
+template CostEstimate expected_cost(const WideBvh<4>&);
+template CostEstimate expected_cost(const WideBvh<8>&);
+template CostEstimate expected_cost(const WideBvh<16>&);
 
 // The kd-tree's cells follow from the scene box and the splits on the path (pre-order nodes, the
 // below child right after its parent). Kept to the public node layout only.
@@ -387,9 +385,10 @@ CostEstimate expected_cost(const AnyAccel& a) {
 }
 
 bool has_end_point_overlap(const AnyAccel& a) {
-    return std::holds_alternative<Bvh>(a) || std::holds_alternative<PairBvh>(a) ||
-           std::holds_alternative<WideBvh<4>>(a) || std::holds_alternative<WideBvh<8>>(a) ||
-           std::holds_alternative<WideBvh<16>>(a);
+    return visit_accel(a, [](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        return std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>;
+    });
 }
 
 double end_point_overlap(const AnyAccel& a,
@@ -397,9 +396,7 @@ double end_point_overlap(const AnyAccel& a,
                          const CostParams& p) {
     return visit_accel(a, [&](const auto& s) -> double {
         using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> ||
-                      std::is_same_v<T, WideBvh<4>> || std::is_same_v<T, WideBvh<8>> ||
-                      std::is_same_v<T, WideBvh<16>>) {
+        if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>) {
             return flat_epo(flatten(s), triangles, p);
         } else {
             return -1.0;

@@ -46,9 +46,8 @@ struct CostEstimate {
 CostEstimate expected_cost(const BruteForce& a);
 CostEstimate expected_cost(const Bvh& a);
 CostEstimate expected_cost(const PairBvh& a);
-CostEstimate expected_cost(const WideBvh<4>& a);
-CostEstimate expected_cost(const WideBvh<8>& a);
-CostEstimate expected_cost(const WideBvh<16>& a);
+template <unsigned N>
+CostEstimate expected_cost(const WideBvh<N>& a);
 CostEstimate expected_cost(const KdTree& a);
 CostEstimate expected_cost(const Grid& a);
 CostEstimate expected_cost(const TwoLevelGrid& a);

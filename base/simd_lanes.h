@@ -14,6 +14,10 @@
 
 namespace rtlab {
 
+/// The low bits of a lane_order_key<N> that hold the lane: 3 up to 8 slots, 4 for 16.
+template <unsigned N>
+inline constexpr std::int32_t lane_key_bits = N > 8 ? 15 : 7;
+
 /// The order in which traversal visits the hit children of a node of N slots: by entry distance
 /// t (the float's bits as a signed integer made monotone in t) with the lowest bits (3 up to 8
 /// slots, 4 for 16) replaced by the lane, so keys are distinct, ties and distances within 8 (16)
@@ -22,10 +26,9 @@ namespace rtlab {
 template <unsigned N = 8>
 inline std::int32_t lane_order_key(float t, unsigned lane) {
     static_assert(N <= 16);
-    constexpr std::int32_t lane_bits = N > 8 ? 15 : 7;
     const auto b = std::bit_cast<std::int32_t>(t);
     const std::int32_t mono = b ^ ((b >> 31) & 0x7fffffff);
-    return (mono & ~lane_bits) | static_cast<std::int32_t>(lane);
+    return (mono & ~lane_key_bits<N>) | static_cast<std::int32_t>(lane);
 }
 
 /// The lanes set in mask (at least one; lanes below N) as lane_order_key<N>(t[lane], lane) in

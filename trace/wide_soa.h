@@ -42,12 +42,6 @@ RTLAB_SIMD_END
 
 namespace rtlab {
 
-/// True for WideBvh<N>.
-template <class A>
-inline constexpr bool is_wide_bvh = false;
-template <unsigned N>
-inline constexpr bool is_wide_bvh<WideBvh<N>> = true;
-
 /// A block of rays for wide_leaf_trace_block: rays [begin, end) of a
 /// batch; take(i, ray) sets ray i's ray and window (false: skip it), put(i, found) takes its
 /// answer (the closest hit's SlotHit, or any hit's slot; called only when there is one) and

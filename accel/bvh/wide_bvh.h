@@ -147,6 +147,12 @@ WideBvh<N> collapse_bvh(Bvh binary, ChildOrder order = ChildOrder::area);
 /// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
 WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order = ChildOrder::area);
 
+/// True for WideBvh<N>.
+template <class A>
+inline constexpr bool is_wide_bvh = false;
+template <unsigned N>
+inline constexpr bool is_wide_bvh<WideBvh<N>> = true;
+
 extern template struct WideBvh<4>;
 extern template struct WideBvh<8>;
 extern template struct WideBvh<16>;
