@@ -40,8 +40,8 @@ TEST_CASE("parallel binned SAH builds the same tree for 1, 2 and 4 threads", "[a
 
 TEST_CASE("top-down BVH builders build the same tree for 1, 2 and 4 threads", "[accel][bvh]") {
     // 70000 primitives: nodes above TopDown::parallel_min (4096) build their children as tasks
-    // into one slot array (compacted after; one thread appends densely), and box unions over
-    // 65536 or more primitives are reduced in parallel blocks.
+    // (each subtree below it densely into its own array, placed after; one thread appends into
+    // one array), and box unions over 65536 or more primitives are reduced in parallel blocks.
     const std::string row =
         GENERATE(as<std::string>{}, "bvh:median", "bvh:binned", "bvh:sweep", "bvh:lbvh");
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);

@@ -141,56 +141,6 @@ void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) 
     }
 }
 
-namespace {
-
-/// What marks a slot no node was written to: an inner node's count (0) with axis 3, which
-/// make_inner never writes.
-constexpr std::uint32_t unused_packed = 3;
-
-}  // namespace
-
-SlotArray::SlotArray(std::size_t n) : slots(LargePageAllocator<BvhNode>().allocate(n), n) {
-    BvhNode unused;
-    unused.packed = unused_packed;
-    for_blocks(n, [&](std::size_t, std::size_t lo, std::size_t hi) {
-        std::uninitialized_fill(slots.begin() + static_cast<std::ptrdiff_t>(lo),
-                                slots.begin() + static_cast<std::ptrdiff_t>(hi), unused);
-    });
-}
-
-SlotArray::~SlotArray() {
-    LargePageAllocator<BvhNode>().deallocate(slots.data(), slots.size());
-}
-
-BvhNodes SlotArray::compact() const {
-    // Every used slot's new index, then the renumbered copy: the order of the slots is kept, so
-    // depth-first pair order is too.
-    const auto used = [&](std::size_t i) { return slots[i].packed != unused_packed; };
-    const std::vector<std::uint32_t> start = block_starts(slots.size(), used);
-    ScratchVector<std::uint32_t> index(slots.size());
-    for_blocks(slots.size(), [&](std::size_t k, std::size_t lo, std::size_t hi) {
-        std::uint32_t next = start[k];
-        for (std::size_t i = lo; i < hi; ++i) {
-            index[i] = next;
-            next += used(i) ? 1u : 0u;
-        }
-    });
-    BvhNodes nodes(start.back());
-    for_blocks(slots.size(), [&](std::size_t, std::size_t lo, std::size_t hi) {
-        for (std::size_t i = lo; i < hi; ++i) {
-            BvhNode node = slots[i];
-            if (!used(i)) {
-                continue;
-            }
-            if (!node.is_leaf()) {
-                node.first = index[node.first];
-            }
-            nodes[index[i]] = node;
-        }
-    });
-    return nodes;
-}
-
 bool TopDown::must_balance(std::uint32_t depth, std::uint32_t n) {
     // An unbalanced split leaves a child of up to n - 1 primitives at depth + 1; it is safe while
     // depth + 1 + ceil_log2(n) <= 64, since a balanced split from there on loses one log2 per

@@ -12,6 +12,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -285,20 +286,6 @@ struct Split {
     std::uint32_t axis;  ///< split axis stored in the node to order traversal
 };
 
-/// Node slots of a parallel top-down build, each subtree writing into its own region: all marked
-/// unused at first, in huge pages first touched in parallel (no serial zeroing of the array).
-class SlotArray {
-public:
-    explicit SlotArray(std::size_t n);
-    ~SlotArray();
-    SlotArray(const SlotArray&) = delete;
-    SlotArray& operator=(const SlotArray&) = delete;
-
-    std::span<BvhNode> slots;
-    /// The used slots in their order, child links renumbered (in parallel).
-    BvhNodes compact() const;
-};
-
 /// When TopDown::run computes a node's box: before its split, from its primitives, for splits
 /// that read it (SAH costs); or after, as the union of its children's (its leaf range's for a
 /// leaf), for splits that ignore it (LBVH, median): every primitive box is then read once, not
@@ -353,11 +340,12 @@ public:
             return Boxes == NodeBoxes::before_split ? range_bounds(0, n) : Bounds3f{};
         };
         if (parallel && n >= parallel_min) {
-            // Every subtree writes into its own fixed region of one array (no copies of finished
-            // subtrees into their parents' arrays), then one pass closes the gaps.
-            const SlotArray slots(2 * n - 1);
-            build_slotted<Boxes>(slots.slots, split, 0, 1, 0, n, 0, root_box());
-            bvh.nodes = slots.compact();
+            // Subtrees below parallel_min build densely into arrays of their own (in cache, no
+            // array of 2n - 1 slots to fill and compact), then go to their final places.
+            Part root;
+            build_part<Boxes>(root, split, 0, n, 0, root_box());
+            bvh.nodes.resize(root.size);
+            place(root, 0, 1, bvh.nodes);
         } else if (n != 0) {
             bvh.nodes.reserve(2 * n - 1);
             bvh.nodes.emplace_back();
@@ -448,42 +436,71 @@ private:
         return put_inner<Boxes>(nodes[node], given, lb, rb, left, s->axis);
     }
 
-    // Fills slots[node] with the subtree of ids[b, e) and its descendants into the region
-    // slots[base, base + 2 (e - b) - 2) (a subtree of k primitives has at most 2k - 1 nodes): the
-    // children at base and base + 1, the left child's descendants from base + 2, the right
-    // child's from base + 2 (mid - b). Depth-first pair order with gaps, which
-    // SlotArray::compact closes; children of large ranges build as parallel tasks. Returns the
-    // node's box.
+    // A subtree of a parallel build: a range below parallel_min (or a leaf) built serially into
+    // `dense` (its root at 0, the rest in depth-first pair order, child links local), or an inner
+    // node whose children were built as parallel tasks (`node`, its child link set by place).
+    struct Part {
+        BvhNodes dense;
+        BvhNode node;
+        std::unique_ptr<Part> kids[2];
+        std::uint32_t size = 0;  // nodes in the subtree, its root included
+    };
+
+    // Builds the subtree of ids[b, e) into `part`, children of ranges of parallel_min or more as
+    // parallel tasks; returns its root's box.
     template <NodeBoxes Boxes, class SplitFn>
-    Bounds3f build_slotted(std::span<BvhNode> slots,
-                           SplitFn& split,
-                           std::uint32_t node,
-                           std::uint32_t base,
-                           std::uint32_t b,
-                           std::uint32_t e,
-                           std::uint32_t depth,
-                           const Bounds3f& given) {
+    Bounds3f build_part(Part& part,
+                        SplitFn& split,
+                        std::uint32_t b,
+                        std::uint32_t e,
+                        std::uint32_t depth,
+                        const Bounds3f& given) {
+        if (e - b < parallel_min) {
+            part.dense.reserve(2 * std::size_t{e - b} - 1);
+            part.dense.emplace_back();
+            const Bounds3f box = build_dense<Boxes>(part.dense, split, 0, b, e, depth, given);
+            part.size = static_cast<std::uint32_t>(part.dense.size());
+            return box;
+        }
         const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
-            return put_leaf<Boxes>(slots[node], b, e, given);
+            part.dense.emplace_back();
+            part.size = 1;
+            return put_leaf<Boxes>(part.dense[0], b, e, given);
         }
-        const std::uint32_t m = s->mid;
-        const auto [lg, rg] = child_boxes<Boxes>(b, m, e);
+        const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
         Bounds3f lb, rb;
-        const auto left = [&] {
-            lb = build_slotted<Boxes>(slots, split, base, base + 2, b, m, depth + 1, lg);
-        };
-        const auto right = [&] {
-            rb = build_slotted<Boxes>(slots, split, base + 1, base + 2 * (m - b), m, e, depth + 1,
-                                      rg);
-        };
-        if (e - b >= parallel_min) {
-            tbb::parallel_invoke(left, right);
-        } else {
-            left();
-            right();
+        part.kids[0] = std::make_unique<Part>();
+        part.kids[1] = std::make_unique<Part>();
+        tbb::parallel_invoke(
+            [&] { lb = build_part<Boxes>(*part.kids[0], split, b, s->mid, depth + 1, lg); },
+            [&] { rb = build_part<Boxes>(*part.kids[1], split, s->mid, e, depth + 1, rg); });
+        part.size = 1 + part.kids[0]->size + part.kids[1]->size;
+        return put_inner<Boxes>(part.node, given, lb, rb, 0, s->axis);
+    }
+
+    // Writes part's root to out[at] and its descendants from out[below] on, as build_dense would
+    // have appended them: a node's children pair first, then the left child's descendants, then
+    // the right child's. Parts in parallel.
+    static void place(const Part& part, std::uint32_t at, std::uint32_t below, BvhNodes& out) {
+        if (part.kids[0] == nullptr) {
+            const auto moved = [&](BvhNode n) {  // local index i >= 1 goes to below + i - 1
+                if (!n.is_leaf()) {
+                    n.first += below - 1;
+                }
+                return n;
+            };
+            out[at] = moved(part.dense[0]);
+            for (std::size_t i = 1; i < part.dense.size(); ++i) {
+                out[below + i - 1] = moved(part.dense[i]);
+            }
+            return;
         }
-        return put_inner<Boxes>(slots[node], given, lb, rb, base, s->axis);
+        out[at] = part.node;
+        out[at].first = below;
+        const std::uint32_t right_below = below + 2 + part.kids[0]->size - 1;
+        tbb::parallel_invoke([&] { place(*part.kids[0], below, below + 2, out); },
+                             [&] { place(*part.kids[1], below + 1, right_below, out); });
     }
 };
 
