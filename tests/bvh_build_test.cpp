@@ -102,13 +102,15 @@ TEST_CASE("sort keys order floats as they compare; the radix sort is a stable so
               bvh_detail::float_order_key(ascending[i + 1]));
     }
     CHECK(bvh_detail::float_order_key(-0.0f) == bvh_detail::float_order_key(0.0f));
-    // 200,000 keys (several 65536-key blocks), codes from few values so that ties are common,
-    // ids in increasing order: the radix sort on the high 32 bits (3 passes of 11 bits) and on
-    // 30 of them (3 of 10) equal std::stable_sort on those bits.
+    // 200,000 keys (several 65536-key blocks: the most significant digit first, then each bucket)
+    // and 50,000 (LSD passes only), codes from few values so that ties are common, ids in
+    // increasing order: the radix sort on the high 32 bits (3 digits of 11 bits), on 30 of them
+    // (3 of 10) and on 7 (one pass) equals std::stable_sort on those bits.
     const std::uint32_t bits = GENERATE(32u, 30u, 7u);
-    CAPTURE(bits);
+    const std::size_t count = GENERATE(200000u, 50000u);
+    CAPTURE(bits, count);
     test::Rng rng(bits);
-    ScratchVector<std::uint64_t> keys(200000);
+    ScratchVector<std::uint64_t> keys(count);
     for (std::size_t i = 0; i < keys.size(); ++i) {
         const float f = static_cast<float>(static_cast<int>(rng.below(2001)) - 1000) * 0.25f;
         std::uint32_t code = bvh_detail::float_order_key(f);

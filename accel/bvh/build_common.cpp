@@ -3,12 +3,15 @@
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <utility>
 
 namespace rtlab::bvh_detail {
 
@@ -102,41 +105,104 @@ std::optional<Split> TopDown::median_or_leaf(
     return t.median_split(b, e);
 }
 
+namespace {
+
+/// One stable counting pass of src into dst on the digit of digit_bits bits at `shift`, in fixed
+/// blocks of 65536 keys: per-block counts (parallel), offsets digit-major then block order,
+/// scatter (parallel). Returns where each digit's keys start in dst, then dst's size.
+std::vector<std::uint32_t> radix_pass(std::span<const std::uint64_t> src,
+                                      std::span<std::uint64_t> dst,
+                                      std::uint32_t shift,
+                                      std::uint32_t digit_bits) {
+    const std::uint32_t radix = 1u << digit_bits;
+    constexpr std::size_t block = std::size_t{1} << 16;
+    const std::size_t n = src.size(), blocks = (n + block - 1) / block;
+    const auto digit = [shift, radix](std::uint64_t k) {
+        return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
+    };
+    std::vector<std::uint32_t> offset(blocks * radix);
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+        std::uint32_t* count = &offset[k * radix];
+        std::fill(count, count + radix, 0u);
+        for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+            ++count[digit(src[i])];
+        }
+    });
+    std::vector<std::uint32_t> start(radix + 1);
+    std::uint32_t sum = 0;
+    for (std::uint32_t d = 0; d < radix; ++d) {
+        start[d] = sum;
+        for (std::size_t k = 0; k < blocks; ++k) {
+            const std::uint32_t c = offset[k * radix + d];
+            offset[k * radix + d] = sum;
+            sum += c;
+        }
+    }
+    start[radix] = sum;
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
+        std::uint32_t* next = &offset[k * radix];
+        for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+            dst[next[digit(src[i])]++] = src[i];
+        }
+    });
+    return start;
+}
+
+/// Stable LSD radix sort of a[0, n) on `passes` digits of digit_bits (at most 11) from `shift`
+/// up, on one thread, through tmp[0, n): the keys end in a after an even number of passes, else
+/// in tmp.
+void radix_sort_serial(std::uint64_t* a,
+                       std::uint64_t* tmp,
+                       std::size_t n,
+                       std::uint32_t shift,
+                       std::uint32_t digit_bits,
+                       std::uint32_t passes) {
+    const std::uint32_t radix = 1u << digit_bits;
+    std::array<std::uint32_t, 2048> count;
+    for (std::uint32_t p = 0; p < passes; ++p, shift += digit_bits) {
+        const auto digit = [shift, radix](std::uint64_t k) {
+            return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
+        };
+        std::fill_n(count.begin(), radix, 0u);
+        for (std::size_t i = 0; i < n; ++i) {
+            ++count[digit(a[i])];
+        }
+        std::uint32_t sum = 0;
+        for (std::uint32_t d = 0; d < radix; ++d) {
+            sum += std::exchange(count[d], sum);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            tmp[count[digit(a[i])]++] = a[i];
+        }
+        std::swap(a, tmp);
+    }
+}
+
+}  // namespace
+
 void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) {
     if (bits == 0) {
         return;
     }
     const std::uint32_t passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
-    const std::uint32_t radix = 1u << digit_bits;
-    constexpr std::size_t block = std::size_t{1} << 16;
-    const std::size_t n = keys.size(), blocks = (n + block - 1) / block;
-    ScratchVector<std::uint64_t> out(n);
-    std::vector<std::uint32_t> offset(blocks * radix);
-    for (std::uint32_t shift = 32; shift < 32 + bits; shift += digit_bits) {
-        const auto digit = [shift, radix](std::uint64_t k) {
-            return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
-        };
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            std::uint32_t* count = &offset[k * radix];
-            std::fill(count, count + radix, 0u);
-            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
-                ++count[digit(keys[i])];
-            }
-        });
-        std::uint32_t sum = 0;
-        for (std::uint32_t d = 0; d < radix; ++d) {
-            for (std::size_t k = 0; k < blocks; ++k) {
-                const std::uint32_t c = offset[k * radix + d];
-                offset[k * radix + d] = sum;
-                sum += c;
-            }
+    ScratchVector<std::uint64_t> out(keys.size());
+    if (passes == 1 || keys.size() < (std::size_t{1} << 16)) {
+        for (std::uint32_t p = 0; p < passes; ++p) {
+            radix_pass(keys, out, 32 + p * digit_bits, digit_bits);
+            keys.swap(out);
         }
-        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
-            std::uint32_t* next = &offset[k * radix];
-            for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
-                out[next[digit(keys[i])]++] = keys[i];
-            }
-        });
+        return;
+    }
+    // The most significant digit first, in one pass over all the keys; then each of its buckets
+    // by the lower digits on its own (in cache, buckets in parallel): the order of the LSD passes
+    // above with one pass through memory instead of `passes`.
+    const std::vector<std::uint32_t> start =
+        radix_pass(keys, out, 32 + (passes - 1) * digit_bits, digit_bits);
+    tbb::parallel_for(std::size_t{0}, start.size() - 1, [&](std::size_t d) {
+        radix_sort_serial(out.data() + start[d], keys.data() + start[d], start[d + 1] - start[d],
+                          32, digit_bits, passes - 1);
+    });
+    if ((passes - 1) % 2 == 0) {
         keys.swap(out);
     }
 }

@@ -215,10 +215,11 @@ inline std::uint32_t float_order_key(float f) {
     return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
 }
 
-/// Stable LSD radix sort of keys by their bits [32, 32 + bits) (a code above an id), in the
-/// fewest passes of at most 11 bits, in fixed blocks: per-block digit counts (parallel), offsets
-/// digit-major then block order, scatter (parallel). Keys made in id order and unique end in the
-/// order of sorting the whole keys, for any thread count.
+/// Stable radix sort of keys by their bits [32, 32 + bits) (a code above an id), on the fewest
+/// digits of at most 11 bits: 65536 keys or more by the most significant digit (a parallel pass
+/// in fixed blocks), then each bucket by the lower digits (LSD, buckets in parallel); fewer by LSD
+/// passes. Keys made in id order and unique end in the order of sorting the whole keys, for any
+/// thread count.
 void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits);
 
 /// Stably partitions v[b, e) by in_first(x) (those first, each part in its old order) through
