@@ -107,15 +107,18 @@ std::optional<Split> TopDown::median_or_leaf(
 
 namespace {
 
+/// Keys per block of radix_pass; radix_sort_by_high sorts fewer keys by LSD passes alone.
+constexpr std::size_t radix_block = std::size_t{1} << 16;
+
 /// One stable counting pass of src into dst on the digit of digit_bits bits at `shift`, in fixed
-/// blocks of 65536 keys: per-block counts (parallel), offsets digit-major then block order,
+/// blocks of radix_block keys: per-block counts (parallel), offsets digit-major then block order,
 /// scatter (parallel). Returns where each digit's keys start in dst, then dst's size.
 std::vector<std::uint32_t> radix_pass(std::span<const std::uint64_t> src,
                                       std::span<std::uint64_t> dst,
                                       std::uint32_t shift,
                                       std::uint32_t digit_bits) {
     const std::uint32_t radix = 1u << digit_bits;
-    constexpr std::size_t block = std::size_t{1} << 16;
+    constexpr std::size_t block = radix_block;
     const std::size_t n = src.size(), blocks = (n + block - 1) / block;
     const auto digit = [shift, radix](std::uint64_t k) {
         return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
@@ -186,7 +189,7 @@ void radix_sort_by_high(ScratchVector<std::uint64_t>& keys, std::uint32_t bits) 
     }
     const std::uint32_t passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
     ScratchVector<std::uint64_t> out(keys.size());
-    if (passes == 1 || keys.size() < (std::size_t{1} << 16)) {
+    if (passes == 1 || keys.size() < radix_block) {
         for (std::uint32_t p = 0; p < passes; ++p) {
             radix_pass(keys, out, 32 + p * digit_bits, digit_bits);
             keys.swap(out);

@@ -437,12 +437,12 @@ private:
         return put_inner<Boxes>(nodes[node], given, lb, rb, left, s->axis);
     }
 
-    // A subtree of a parallel build: a range below parallel_min (or a leaf) built serially into
-    // `dense` (its root at 0, the rest in depth-first pair order, child links local), or an inner
-    // node whose children were built as parallel tasks (`node`, its child link set by place).
+    // A subtree of a parallel build as build_dense lays it out from local index 0 (its root at 0,
+    // the rest in depth-first pair order, child links local): a range below parallel_min (or a
+    // leaf) built serially, or an inner node alone (children pair at local 1) whose two children
+    // were built as parallel tasks into `kids`.
     struct Part {
         BvhNodes dense;
-        BvhNode node;
         std::unique_ptr<Part> kids[2];
         std::uint32_t size = 0;  // nodes in the subtree, its root included
     };
@@ -456,17 +456,16 @@ private:
                         std::uint32_t e,
                         std::uint32_t depth,
                         const Bounds3f& given) {
+        part.dense.emplace_back();
         if (e - b < parallel_min) {
             part.dense.reserve(2 * std::size_t{e - b} - 1);
-            part.dense.emplace_back();
             const Bounds3f box = build_dense<Boxes>(part.dense, split, 0, b, e, depth, given);
             part.size = static_cast<std::uint32_t>(part.dense.size());
             return box;
         }
+        part.size = 1;
         const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
-            part.dense.emplace_back();
-            part.size = 1;
             return put_leaf<Boxes>(part.dense[0], b, e, given);
         }
         const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
@@ -476,32 +475,26 @@ private:
         tbb::parallel_invoke(
             [&] { lb = build_part<Boxes>(*part.kids[0], split, b, s->mid, depth + 1, lg); },
             [&] { rb = build_part<Boxes>(*part.kids[1], split, s->mid, e, depth + 1, rg); });
-        part.size = 1 + part.kids[0]->size + part.kids[1]->size;
-        return put_inner<Boxes>(part.node, given, lb, rb, 0, s->axis);
+        part.size += part.kids[0]->size + part.kids[1]->size;
+        return put_inner<Boxes>(part.dense[0], given, lb, rb, 1, s->axis);
     }
 
     // Writes part's root to out[at] and its descendants from out[below] on, as build_dense would
-    // have appended them: a node's children pair first, then the left child's descendants, then
-    // the right child's. Parts in parallel.
+    // have appended them (local index i >= 1 goes to below + i - 1): a node's children pair first,
+    // then the left child's descendants, then the right child's. Parts in parallel.
     static void place(const Part& part, std::uint32_t at, std::uint32_t below, BvhNodes& out) {
-        if (part.kids[0] == nullptr) {
-            const auto moved = [&](BvhNode n) {  // local index i >= 1 goes to below + i - 1
-                if (!n.is_leaf()) {
-                    n.first += below - 1;
-                }
-                return n;
-            };
-            out[at] = moved(part.dense[0]);
-            for (std::size_t i = 1; i < part.dense.size(); ++i) {
-                out[below + i - 1] = moved(part.dense[i]);
+        for (std::size_t i = 0; i < part.dense.size(); ++i) {
+            BvhNode n = part.dense[i];
+            if (!n.is_leaf()) {
+                n.first += below - 1;
             }
-            return;
+            out[i == 0 ? at : below + i - 1] = n;
         }
-        out[at] = part.node;
-        out[at].first = below;
-        const std::uint32_t right_below = below + 2 + part.kids[0]->size - 1;
-        tbb::parallel_invoke([&] { place(*part.kids[0], below, below + 2, out); },
-                             [&] { place(*part.kids[1], below + 1, right_below, out); });
+        if (part.kids[0] != nullptr) {
+            const std::uint32_t right_below = below + 2 + part.kids[0]->size - 1;
+            tbb::parallel_invoke([&] { place(*part.kids[0], below, below + 2, out); },
+                                 [&] { place(*part.kids[1], below + 1, right_below, out); });
+        }
     }
 };
 
