@@ -73,8 +73,8 @@ bool issue12_paired_layout(const std::string& spec);
 /// The shortest timed sample of a paired row (seconds; shorter with --quick).
 double issue12_min_sample();
 
-/// The settings of a paired two-thread / one-thread row (issue12/scaling/...): 11 pairs (3 with
-/// --quick), manual time in milliseconds.
+/// The settings of a paired two-thread / one-thread row (issue12/scaling/...): 3 repetitions of 7
+/// pairs (2 of 3 with --quick), reported as aggregates with min and max; manual time in ms.
 benchmark::internal::Benchmark* issue12_scaling(benchmark::internal::Benchmark* b);
 
 /// What an issue-12 tracer is built for.

@@ -153,18 +153,20 @@ def base_name(name):
 
 def load_rows(data):
     """One row per benchmark name: the median aggregate when repetitions ran, else the first
-    iteration row. Counters are top-level keys of each entry in Google Benchmark's JSON."""
-    rows, medians = {}, {}
+    iteration row. Counters are top-level keys of each entry in Google Benchmark's JSON. A median
+    row holds the name's other aggregates (mean, stddev, min, max, ...) under "aggregates"."""
+    rows, aggregates = {}, {}
     for b in data.get("benchmarks", []):
         if b.get("error_occurred"):
             continue
         name = base_name(b.get("run_name") or b["name"])
         if b.get("run_type") == "aggregate":
-            if b.get("aggregate_name") == "median":
-                medians[name] = b
+            aggregates.setdefault(name, {})[b.get("aggregate_name")] = b
         elif name not in rows:
             rows[name] = b
-    rows.update(medians)
+    for name, aggs in aggregates.items():
+        if "median" in aggs:
+            rows[name] = dict(aggs["median"], aggregates=aggs)
     return rows
 
 
