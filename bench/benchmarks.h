@@ -73,9 +73,10 @@ bool issue12_paired_layout(const std::string& spec);
 /// The shortest timed sample of a paired row (seconds; shorter with --quick).
 double issue12_min_sample();
 
-/// The settings of a paired two-thread / one-thread row (issue12/scaling/...): 3 repetitions of 7
-/// pairs (2 of 3 with --quick), reported as aggregates with min and max; manual time in ms.
-benchmark::internal::Benchmark* issue12_scaling(benchmark::internal::Benchmark* b);
+/// The settings of a paired row (issue12/paired/..., paired_build/..., scaling/...): 3 repetitions
+/// of `pairs` pairs (2 of 3 with --quick), reported as aggregates with min and max; manual time in
+/// milliseconds.
+benchmark::internal::Benchmark* issue12_paired_timing(benchmark::internal::Benchmark* b, int pairs);
 
 /// What an issue-12 tracer is built for.
 struct Issue12Key {

@@ -10,15 +10,16 @@
 //       row (the wide layouts and bvh:pair) against Embree medium, one thread, timed in
 //       alternation: each pair is one sample of ours and one of Embree's (order swapped from
 //       pair to pair), each sample one untimed pass over the rays, then enough timed passes to
-//       last >= 20 ms. Counters: ratio (median over the pairs of Embree's time / ours: our speed
-//       in Embree's), ratio_q1 and ratio_q3 (quartiles), pairs, passes. A load burst on a shared
+//       last >= 20 ms; 3 repetitions of 7 pairs. Counters per repetition: ratio (median over the
+//       pairs of Embree's time / ours: our speed in Embree's), ratio_q1 and ratio_q3 (quartiles),
+//       pairs, passes; reported as aggregates (median, min, max, ...). A load burst on a shared
 //       machine slows both halves of a pair, so the ratio holds still where separate medians
 //       drift.
 //   issue12/paired_build/<spec>/<scene>/threads:1  our build of the row (bvh:pbinned and the
 //       fastest layout, bvh8) from the triangle bounds against Embree medium's rtcCommitScene
 //       (geometry upload untimed), one thread, in alternation (order swapped from pair to pair).
-//       Counters: ratio (median over the pairs of our time / Embree's: lower is faster),
-//       ratio_q1, ratio_q3, pairs.
+//       3 repetitions of 5 pairs. Counters: ratio (median over the pairs of our time / Embree's:
+//       lower is faster), ratio_q1, ratio_q3, pairs; aggregates as above.
 //   issue12/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
 //       qualities) or medium's trace of the mesh scene with TBB limited to one thread and to two,
 //       in alternation (bench/paired.h); ratio is the median speed-up, as for our rows.
@@ -155,11 +156,10 @@ void register_paired(const std::vector<std::string>& scenes, const std::string& 
                     const std::string name = "issue12/paired/" + spec +
                                              (wt ? "/watertight/robust/" : "/default/plain/") +
                                              scene + "/" + std::string(to_string(k)) + "/threads:1";
-                    benchmark::RegisterBenchmark(name.c_str(), bm_paired,
-                                                 Issue12Key{scene, spec, wt}, k)
-                        ->Unit(benchmark::kMillisecond)
-                        ->UseManualTime()
-                        ->Iterations(quick_mode() ? 3 : 21);
+                    issue12_paired_timing(
+                        benchmark::RegisterBenchmark(name.c_str(), bm_paired,
+                                                     Issue12Key{scene, spec, wt}, k),
+                        7);
                 }
             }
         }
@@ -204,12 +204,14 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
     for (const EmbreeQuality& q : embree_qualities) {
         const std::string name =
             std::string("issue12/scaling/embree:") + q.name + "/build/" + mesh + "/threads:2";
-        issue12_scaling(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, q, mesh));
+        issue12_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, q, mesh),
+                              7);
     }
     for (RayKind k : issue_kinds) {
         const std::string name = "issue12/scaling/embree:medium/" + std::string(to_string(k)) +
                                  "/" + mesh + "/threads:2";
-        issue12_scaling(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_trace, mesh, k));
+        issue12_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_trace, mesh, k),
+                              7);
     }
     // The builds the target table sets against Embree medium's: the binary default and bvh8's.
     for (const std::string& spec : issue12_layout_specs()) {
@@ -217,9 +219,7 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
             continue;
         }
         const std::string name = "issue12/paired_build/" + spec + "/" + mesh + "/threads:1";
-        benchmark::RegisterBenchmark(name.c_str(), bm_paired_build, spec, mesh)
-            ->Unit(benchmark::kMillisecond)
-            ->UseManualTime()
-            ->Iterations(quick_mode() ? 3 : 11);
+        issue12_paired_timing(
+            benchmark::RegisterBenchmark(name.c_str(), bm_paired_build, spec, mesh), 5);
     }
 }

@@ -52,31 +52,25 @@ class Issue12:
         self.build = {}  # (accel, scene, threads) -> build_ms
         self.build_rows = {}
         self.wall, self.build_wall = {}, {}  # wall-time figures, for the 2 / 1 thread ratios
-        self.paired = {}  # (accel, methods, mode, scene, kind) -> (median, q1, q3) vs Embree medium
-        self.paired_build = {}  # (accel, scene) -> (median, q1, q3) of our build time / Embree's
+        self.paired = {}  # (accel, methods, mode, scene, kind) -> (median, low, high) vs Embree medium
+        self.paired_build = {}  # (accel, scene) -> (median, low, high) of our build time / Embree's
         self.scaling = {}  # (accel, "build" or kind, scene) -> (median, low, high) of t1 / t2
-        self.scaling_reps = False  # low, high: repetitions' lowest and highest, else quartiles
+        # Paired rows' (median, low, high): with repetitions, the median of their ratios and the
+        # lowest and highest (reps True); from a run of one repetition, its median and quartiles.
+        self.reps = False
         for name, row in rows.items():
             m = SCALING.match(name)
             if m:
-                aggs = row.get("aggregates", {})
-                if "min" in aggs and "max" in aggs:
-                    # Repetitions: the median of their speed-ups, their lowest and highest.
-                    self.scaling_reps = True
-                    spread = (num(aggs["min"], "ratio"), num(aggs["max"], "ratio"))
-                else:
-                    spread = (num(row, "ratio_q1"), num(row, "ratio_q3"))
-                self.scaling[(m["accel"], m["what"], m["scene"])] = (num(row, "ratio"), *spread)
+                self.scaling[(m["accel"], m["what"], m["scene"])] = self.paired_ratio(row)
                 continue
             m = PAIRED_BUILD.match(name)
             if m:
-                self.paired_build[(m["accel"], m["scene"])] = (
-                    num(row, "ratio"), num(row, "ratio_q1"), num(row, "ratio_q3"))
+                self.paired_build[(m["accel"], m["scene"])] = self.paired_ratio(row)
                 continue
             m = PAIRED.match(name)
             if m:
                 self.paired[(m["accel"], m["methods"], m["mode"], m["scene"], m["kind"])] = (
-                    num(row, "ratio"), num(row, "ratio_q1"), num(row, "ratio_q3"))
+                    self.paired_ratio(row))
                 continue
             m = TRACE.match(name)
             if m:
@@ -103,6 +97,21 @@ class Issue12:
         self.mesh = next((s for s in scenes if s.startswith("flake_meshfloor")), None)
         self.spheres = [s for s in scenes if s.startswith("flake_spheres")]
         self.ours = sorted({k[0] for k in self.trace if not k[0].startswith("embree:")})
+
+    def paired_ratio(self, row):
+        """A paired row's (median, low, high): see self.reps."""
+        aggs = row.get("aggregates", {})
+        if "min" in aggs and "max" in aggs:
+            self.reps = True
+            return num(row, "ratio"), num(aggs["min"], "ratio"), num(aggs["max"], "ratio")
+        return num(row, "ratio"), num(row, "ratio_q1"), num(row, "ratio_q3")
+
+    def pairs(self, per_rep, single):
+        """How a kind of paired row was timed, and what its brackets show."""
+        if self.reps:
+            return (f"3 repetitions of {per_rep} pairs spread over the run by random interleaving; "
+                    "the median of the repetitions' medians [the lowest, the highest]")
+        return f"{single} pairs; the median [quartiles]"
 
     def rate(self, accel, scene, kind, threads=1, methods="default", mode="plain"):
         return self.trace.get((accel, methods, mode, scene, kind, threads))
@@ -149,7 +158,8 @@ class Issue12:
         return self.best(scene, kind, pred)
 
     def table(self):
-        out = ["| measure | target | ratio of medians | paired ratio, median [quartiles] | "
+        spread = "[lowest, highest repetition]" if self.reps else "[quartiles]"
+        out = [f"| measure | target | ratio of medians | paired ratio, median {spread} | "
                "status |", "|---|---|---|---|---|"]
         emb = "embree:medium"
         for kind in KINDS:
@@ -216,8 +226,8 @@ class Issue12:
             return []
         out = [f"Two threads / one thread on {self.mesh}, paired (`issue12/scaling/...`: the same "
                "build or pass over the rays with TBB limited to one thread and to two, in "
-               f"alternation, {self.scaling_method()}; a pair shares the machine's load, so this "
-               "is the figure the status takes):", "",
+               f"alternation, {self.pairs(7, 11)} of the per-pair speed-ups; a pair shares the "
+               "machine's load, so this is the figure the status takes):", "",
                "| structure | build | " + " | ".join(KINDS) + " |", "|---|---|---|---|---|"]
         for a in accs:
             cells = []
@@ -226,13 +236,6 @@ class Issue12:
                 cells.append(f"{fmt(p[0])}x [{fmt(p[1])}, {fmt(p[2])}]" if p else "-")
             out.append(f"| {short(a)} | " + " | ".join(cells) + " |")
         return out + [""]
-
-    def scaling_method(self):
-        """How the scaling rows were timed and what their brackets show."""
-        if self.scaling_reps:
-            return ("3 repetitions of 7 pairs, spread over the run by random interleaving; the "
-                    "median of the repetitions' median speed-ups [the lowest, the highest]")
-        return "11 pairs; median speed-up [quartiles]"
 
     def detail(self):
         out = [f"Mrays/s, one thread, {self.mesh} (triangles); nodes and primitive tests per ray "
@@ -303,16 +306,16 @@ def section(rows, prov_line, cpu=False):
              "rtlab layout is the best registry row in the run for that scene and ray kind. "
              "Ratio of medians: our median rays/s over Embree's, each from its own benchmark. "
              "Paired ratio (`issue12/paired/...` rows, the wide layouts and bvh:pair): ours and "
-             "Embree medium timed in alternation, 21 pairs of warm samples of at least 20 ms, "
-             "the median of the per-pair ratios with its quartiles; load on a shared machine "
+             "Embree medium timed in alternation, each sample at least 20 ms of warm passes, "
+             f"{rep.pairs(7, 21)} of the per-pair ratios; load on a shared machine "
              "slows both halves of a pair, so it is the steadier figure: where the run has "
              "paired rows, the best layout is the one with the best paired ratio, and the paired "
              "ratio decides the status. The one-thread build rows against Embree have one too "
              "(`issue12/paired_build/...`: our build and Embree medium's commit in alternation, "
-             "11 pairs, the median of our time over Embree's), and so do the two-thread / "
+             f"{rep.pairs(5, 11)} of our time over Embree's), and so do the two-thread / "
              "one-thread rows (`issue12/scaling/...`: one thread and two in alternation, "
-             f"{rep.scaling_method()}; the wide layouts, bvh:pair and Embree medium for "
-             "traces, every structure for builds; table under Per structure). "
+             f"{rep.pairs(7, 11)} of the speed-ups; the wide layouts, bvh:pair and Embree "
+             "medium for traces, every structure for builds; table under Per structure). "
              + ("Basis: CPU time of the measuring thread for one-thread rows (`--cpu`: the "
                 "machine was shared, and with one thread all work runs on that thread), wall "
                 "time for two-thread rows (which a shared machine distorts)." if rep.cpu else
@@ -343,9 +346,11 @@ def synthetic_rows():
         for t in (1, 2):
             rows[f"issue12/build/{a}/flake_meshfloor2/threads:{t}"] = {"build_ms": 100.0 / t}
     rows["issue12/paired/" + specs[1] + "/default/plain/flake_meshfloor2/primary/threads:1"] = {
-        "ratio": 0.52, "ratio_q1": 0.5, "ratio_q3": 0.55}
+        "ratio": 0.52, "ratio_q1": 0.51, "ratio_q3": 0.54,
+        "aggregates": {"min": {"ratio": 0.5}, "max": {"ratio": 0.55}}}
     rows["issue12/paired_build/" + specs[0] + "/flake_meshfloor2/threads:1"] = {
-        "ratio": 1.04, "ratio_q1": 1.01, "ratio_q3": 1.08}
+        "ratio": 1.04, "ratio_q1": 1.02, "ratio_q3": 1.06,
+        "aggregates": {"min": {"ratio": 1.01}, "max": {"ratio": 1.08}}}
     rows["issue12/scaling/" + specs[0] + "/build/flake_meshfloor2/threads:2"] = {
         "ratio": 1.83, "ratio_q1": 1.79, "ratio_q3": 1.9,
         "aggregates": {"min": {"ratio": 1.81}, "max": {"ratio": 1.95}}}
