@@ -38,7 +38,8 @@ Command add_rays(CLI::App& root) {
         "rays",
         "Write a ray set for a scene: records of 8 little-endian float32 "
         "(ox oy oz dx dy dz tmin tmax), deterministic for scene, kind, count and seed");
-    sub->add_option("--scene", a->scene, "Scene JSON or mesh file (.obj .ply .off .stl)")
+    sub->add_option("scene,--scene", a->scene,
+                    "Scene JSON or mesh file (.obj .ply .off .stl), positional or --scene")
         ->required();
     sub->add_option("--kind", a->kind, "primary | shadow | diffuse | random (default primary)")
         ->check(CLI::IsMember({"primary", "shadow", "diffuse", "random"}));

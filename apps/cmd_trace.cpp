@@ -107,7 +107,8 @@ Command add_trace(CLI::App& root) {
         "Trace a ray file through a scene with one structure per primitive set; prints one JSON "
         "object (accel method rays hits build_ms trace_ms mrays_per_s [nodes_per_ray "
         "prims_per_ray cost_model measured_cost [epo]])");
-    sub->add_option("--scene", a->scene, "Scene JSON or mesh file (.obj .ply .off .stl)")
+    sub->add_option("scene,--scene", a->scene,
+                    "Scene JSON or mesh file (.obj .ply .off .stl), positional or --scene")
         ->required();
     sub->add_option("--rays", a->rays, "Ray file (32-byte float32 records, see rtlab rays)")
         ->required();
