@@ -52,25 +52,28 @@ class Issue12:
         self.build = {}  # (accel, scene, threads) -> build_ms
         self.build_rows = {}
         self.wall, self.build_wall = {}, {}  # wall-time figures, for the 2 / 1 thread ratios
-        self.paired = {}  # (accel, methods, mode, scene, kind) -> (median, low, high) vs Embree medium
+        # (accel, methods, mode, scene, kind) -> (median, low, high) against Embree medium
+        self.paired = {}
         self.paired_build = {}  # (accel, scene) -> (median, low, high) of our build time / Embree's
         self.scaling = {}  # (accel, "build" or kind, scene) -> (median, low, high) of t1 / t2
         # Paired rows' (median, low, high): with repetitions, the median of their ratios and the
         # lowest and highest (reps True); from a run of one repetition, its median and quartiles.
         self.reps = False
+        self.timing = {}  # "trace", "build" or "scaling" -> (repetitions, pairs per repetition)
         for name, row in rows.items():
             m = SCALING.match(name)
             if m:
-                self.scaling[(m["accel"], m["what"], m["scene"])] = self.paired_ratio(row)
+                self.scaling[(m["accel"], m["what"], m["scene"])] = self.paired_ratio(row,
+                                                                                       "scaling")
                 continue
             m = PAIRED_BUILD.match(name)
             if m:
-                self.paired_build[(m["accel"], m["scene"])] = self.paired_ratio(row)
+                self.paired_build[(m["accel"], m["scene"])] = self.paired_ratio(row, "build")
                 continue
             m = PAIRED.match(name)
             if m:
                 self.paired[(m["accel"], m["methods"], m["mode"], m["scene"], m["kind"])] = (
-                    self.paired_ratio(row))
+                    self.paired_ratio(row, "trace"))
                 continue
             m = TRACE.match(name)
             if m:
@@ -98,20 +101,25 @@ class Issue12:
         self.spheres = [s for s in scenes if s.startswith("flake_spheres")]
         self.ours = sorted({k[0] for k in self.trace if not k[0].startswith("embree:")})
 
-    def paired_ratio(self, row):
-        """A paired row's (median, low, high): see self.reps."""
+    def paired_ratio(self, row, kind):
+        """A paired row's (median, low, high) (see self.reps); notes how its kind was timed."""
+        self.timing.setdefault(kind, (int(row.get("repetitions") or 1),
+                                      int(num(row, "pairs") or 0)))
         aggs = row.get("aggregates", {})
         if "min" in aggs and "max" in aggs:
             self.reps = True
             return num(row, "ratio"), num(aggs["min"], "ratio"), num(aggs["max"], "ratio")
         return num(row, "ratio"), num(row, "ratio_q1"), num(row, "ratio_q3")
 
-    def pairs(self, per_rep, single):
-        """How a kind of paired row was timed, and what its brackets show."""
+    def pairs(self, kind):
+        """How a kind of paired row was timed (as the run's rows say), and what its brackets
+        show."""
+        reps, pairs = self.timing.get(kind, (1, 0))
         if self.reps:
-            return (f"3 repetitions of {per_rep} pairs spread over the run by random interleaving; "
-                    "the median of the repetitions' medians [the lowest, the highest]")
-        return f"{single} pairs; the median [quartiles]"
+            return (f"{reps} repetitions of {pairs} pairs spread over the run by random "
+                    "interleaving; the median of the repetitions' medians [the lowest, the "
+                    "highest]")
+        return f"{pairs} pairs; the median [quartiles]"
 
     def rate(self, accel, scene, kind, threads=1, methods="default", mode="plain"):
         return self.trace.get((accel, methods, mode, scene, kind, threads))
@@ -226,7 +234,7 @@ class Issue12:
             return []
         out = [f"Two threads / one thread on {self.mesh}, paired (`issue12/scaling/...`: the same "
                "build or pass over the rays with TBB limited to one thread and to two, in "
-               f"alternation, {self.pairs(7, 11)} of the per-pair speed-ups; a pair shares the "
+               f"alternation, {self.pairs('scaling')} of the per-pair speed-ups; a pair shares the "
                "machine's load, so this is the figure the status takes):", "",
                "| structure | build | " + " | ".join(KINDS) + " |", "|---|---|---|---|---|"]
         for a in accs:
@@ -307,14 +315,14 @@ def section(rows, prov_line, cpu=False):
              "Ratio of medians: our median rays/s over Embree's, each from its own benchmark. "
              "Paired ratio (`issue12/paired/...` rows, the wide layouts and bvh:pair): ours and "
              "Embree medium timed in alternation, each sample at least 20 ms of warm passes, "
-             f"{rep.pairs(7, 21)} of the per-pair ratios; load on a shared machine "
+             f"{rep.pairs('trace')} of the per-pair ratios; load on a shared machine "
              "slows both halves of a pair, so it is the steadier figure: where the run has "
              "paired rows, the best layout is the one with the best paired ratio, and the paired "
              "ratio decides the status. The one-thread build rows against Embree have one too "
              "(`issue12/paired_build/...`: our build and Embree medium's commit in alternation, "
-             f"{rep.pairs(5, 11)} of our time over Embree's), and so do the two-thread / "
+             f"{rep.pairs('build')} of our time over Embree's), and so do the two-thread / "
              "one-thread rows (`issue12/scaling/...`: one thread and two in alternation, "
-             f"{rep.pairs(7, 11)} of the speed-ups; the wide layouts, bvh:pair and Embree "
+             f"{rep.pairs('scaling')} of the speed-ups; the wide layouts, bvh:pair and Embree "
              "medium for traces, every structure for builds; table under Per structure). "
              + ("Basis: CPU time of the measuring thread for one-thread rows (`--cpu`: the "
                 "machine was shared, and with one thread all work runs on that thread), wall "
@@ -346,15 +354,15 @@ def synthetic_rows():
         for t in (1, 2):
             rows[f"issue12/build/{a}/flake_meshfloor2/threads:{t}"] = {"build_ms": 100.0 / t}
     rows["issue12/paired/" + specs[1] + "/default/plain/flake_meshfloor2/primary/threads:1"] = {
-        "ratio": 0.52, "ratio_q1": 0.51, "ratio_q3": 0.54,
+        "ratio": 0.52, "ratio_q1": 0.51, "ratio_q3": 0.54, "pairs": 7, "repetitions": 3,
         "aggregates": {"min": {"ratio": 0.5}, "max": {"ratio": 0.55}}}
     rows["issue12/paired_build/" + specs[0] + "/flake_meshfloor2/threads:1"] = {
-        "ratio": 1.04, "ratio_q1": 1.02, "ratio_q3": 1.06,
+        "ratio": 1.04, "ratio_q1": 1.02, "ratio_q3": 1.06, "pairs": 5, "repetitions": 3,
         "aggregates": {"min": {"ratio": 1.01}, "max": {"ratio": 1.08}}}
     rows["issue12/scaling/" + specs[0] + "/build/flake_meshfloor2/threads:2"] = {
-        "ratio": 1.83, "ratio_q1": 1.79, "ratio_q3": 1.9,
+        "ratio": 1.83, "ratio_q1": 1.79, "ratio_q3": 1.9, "pairs": 7, "repetitions": 3,
         "aggregates": {"min": {"ratio": 1.81}, "max": {"ratio": 1.95}}}
     rows["issue12/scaling/embree:medium/shadow/flake_meshfloor2/threads:2"] = {
-        "ratio": 1.7, "ratio_q1": 1.6, "ratio_q3": 1.75,
+        "ratio": 1.7, "ratio_q1": 1.6, "ratio_q3": 1.75, "pairs": 7, "repetitions": 3,
         "aggregates": {"min": {"ratio": 1.45}, "max": {"ratio": 1.85}}}
     return rows

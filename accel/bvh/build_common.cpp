@@ -118,8 +118,7 @@ std::vector<std::uint32_t> radix_pass(std::span<const std::uint64_t> src,
                                       std::uint32_t shift,
                                       std::uint32_t digit_bits) {
     const std::uint32_t radix = 1u << digit_bits;
-    constexpr std::size_t block = radix_block;
-    const std::size_t n = src.size(), blocks = (n + block - 1) / block;
+    const std::size_t n = src.size(), blocks = (n + radix_block - 1) / radix_block;
     const auto digit = [shift, radix](std::uint64_t k) {
         return static_cast<std::uint32_t>(k >> shift) & (radix - 1);
     };
@@ -127,7 +126,7 @@ std::vector<std::uint32_t> radix_pass(std::span<const std::uint64_t> src,
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
         std::uint32_t* count = &offset[k * radix];
         std::fill(count, count + radix, 0u);
-        for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+        for (std::size_t i = k * radix_block; i < std::min(n, (k + 1) * radix_block); ++i) {
             ++count[digit(src[i])];
         }
     });
@@ -144,7 +143,7 @@ std::vector<std::uint32_t> radix_pass(std::span<const std::uint64_t> src,
     start[radix] = sum;
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
         std::uint32_t* next = &offset[k * radix];
-        for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i) {
+        for (std::size_t i = k * radix_block; i < std::min(n, (k + 1) * radix_block); ++i) {
             dst[next[digit(src[i])]++] = src[i];
         }
     });
