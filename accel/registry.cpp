@@ -247,13 +247,45 @@ Bvh aligned_source(const BuildInput& in, const AccelSpec& s) {
     return align_leaf_slots(source_bvh(in, s), soa ? as_u32(s.value("leaf_align")) : 1);
 }
 
-/// A layout row (bvh:pair, bvh4, bvh8): the `from` builder's tree (spec's Config) converted by
-/// Convert, the whole row (build, alignment, conversion) on the spec's `threads`.
+/// The child order a layout row's spec asks for.
+ChildOrder child_order_of(const AccelSpec& s) {
+    return s.value("order") == 0 ? ChildOrder::area : ChildOrder::build;
+}
+
+// The least-area collapse by default: the same build time as the greedy one (1.65M triangles,
+// 1 thread: bvh8 417 against 419 ms, bvh16 411 against 402), fewer node visits and faster traces
+// on every issue 12 row measured (docs/results.md, issue 12, session 49).
+const ParamSpec collapse = choice_param("collapse",
+                                        1,
+                                        {"greedy", "sah"},
+                                        "which binary nodes become wide nodes; greedy: open the "
+                                        "largest inner child until N children; sah: least "
+                                        "summed surface area of the wide nodes (optimal)");
+
+/// bvh4, bvh8, bvh16: the source tree collapsed with the spec's order and collapse rule.
+template <unsigned N>
+WideBvh<N> collapse_row(Bvh source, const AccelSpec& s) {
+    return collapse_bvh<N>(std::move(source), child_order_of(s),
+                           s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah);
+}
+
+/// bvh8q: collapse_row<8> with its nodes quantised.
+WideBvh<8> quantize_row(Bvh source, const AccelSpec& s) {
+    return quantize_bvh8(std::move(source), child_order_of(s),
+                         s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah);
+}
+
+/// bvh:pair: the source tree converted with the spec's order.
+PairBvh pair_row(Bvh source, const AccelSpec& s) {
+    return PairBvh::convert(std::move(source), child_order_of(s));
+}
+
+/// A layout row (bvh:pair, bvh4, bvh8, ...): the `from` builder's tree (spec's Config) converted
+/// by Convert(tree, spec), the whole row (build, alignment, conversion) on the spec's `threads`.
 template <auto Convert>
 AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     return with_threads(threads_of(s), [&]() -> AnyAccel {
-        auto layout = Convert(aligned_source(in, s),
-                              s.value("order") == 0 ? ChildOrder::area : ChildOrder::build);
+        auto layout = Convert(aligned_source(in, s), s);
         layout.soa_leaves = s.value("leaves") == 0;
         return layout;
     });
@@ -317,7 +349,7 @@ const AccelEntry registry_rows[] = {
      "of the split first",
      {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, soa_block,
       morton_bits, threads},
-     &layout_row<&PairBvh::convert>},
+     &layout_row<&pair_row>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
      {sah_max_leaf, sah_ct, bvh_ci, sah_block, threads},
@@ -333,26 +365,26 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
-      morton_bits, threads},
-     &layout_row<&collapse_bvh<4>>},
+     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+      soa_block, morton_bits, threads},
+     &layout_row<&collapse_row<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
-      morton_bits, threads},
-     &layout_row<&collapse_bvh<8>>},
+     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+      soa_block, morton_bits, threads},
+     &layout_row<&collapse_row<8>>},
     {"bvh16",
      "16-wide BVH collapsed from a binary build by surface area, one 16-lane node test (AVX-512; "
      "two 8-lane ones on AVX2)",
-     {from, leaves, leaf_align, child_order, sah_max_leaf, bins, sah_ct, bvh_ci, soa_block,
-      morton_bits, threads},
-     &layout_row<&collapse_bvh<16>>},
+     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+      soa_block, morton_bits, threads},
+     &layout_row<&collapse_row<16>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, child_order, qwide_max_leaf, bins, sah_ct, bvh_ci, soa_block,
-      morton_bits, threads},
-     &layout_row<&quantize_bvh8>},
+     {from, leaves, leaf_align, child_order, collapse, qwide_max_leaf, bins, sah_ct, bvh_ci,
+      soa_block, morton_bits, threads},
+     &layout_row<&quantize_row>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
      {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},

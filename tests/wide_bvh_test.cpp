@@ -9,6 +9,7 @@
 #include "base/simd.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
+#include "support/bvh_checks.h"
 
 #include <catch2/catch.hpp>
 
@@ -19,6 +20,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rtlab {
@@ -322,7 +324,7 @@ TEST_CASE("wide BVH children are ordered by surface area, largest first", "[acce
 TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") {
     // Deep enough that the subtrees below the serial top levels are collapsed by parallel tasks.
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 20000);
-    for (const std::string wide : {"bvh4", "bvh8", "bvh16", "bvh8q"}) {
+    for (const std::string wide : {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,collapse=greedy"}) {
         CAPTURE(wide);
         const std::string spec = wide + ",max_leaf=4,ct=1,threads=";
         const AnyAccel one = build_accel(spec + "1", soup.input());
@@ -334,6 +336,95 @@ TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") 
             CHECK(build_accel(spec + threads, soup.input()) == one);
         }
     }
+}
+
+/// The summed surface area of w's nodes: the root's (its children's union) and every inner slot's.
+template <unsigned N>
+double wide_node_area(const WideBvh<N>& w) {
+    Bounds3f root;
+    for (unsigned i = 0; i < N && w.nodes[0].occupied(i); ++i) {
+        root = merge(root, w.nodes[0].bounds(i));
+    }
+    double sum = static_cast<double>(root.surface_area());
+    for (const WideNode<N>& n : w.nodes) {
+        for (unsigned i = 0; i < N && n.occupied(i); ++i) {
+            sum += n.is_leaf(i) ? 0.0 : static_cast<double>(n.bounds(i).surface_area());
+        }
+    }
+    return sum;
+}
+
+/// The least summed surface area of the wide nodes of any collapse of `bvh` into nodes of at most
+/// N children, by trying every set of the inner nodes below the root as the other wide nodes: a
+/// wide node's children are the leaves and wide nodes reached through the other inner nodes.
+template <unsigned N>
+double least_collapse_area(const Bvh& bvh) {
+    std::vector<std::uint32_t> inner;
+    for (std::uint32_t i = 1; i < bvh.nodes.size(); ++i) {
+        if (!bvh.nodes[i].is_leaf()) {
+            inner.push_back(i);
+        }
+    }
+    REQUIRE(inner.size() <= 16);
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<char> wide(bvh.nodes.size());
+    for (std::uint32_t set = 0; set < (1u << inner.size()); ++set) {
+        std::fill(wide.begin(), wide.end(), 0);
+        wide[0] = 1;
+        for (std::size_t k = 0; k < inner.size(); ++k) {
+            wide[inner[k]] = static_cast<char>((set >> k) & 1u);
+        }
+        const auto kids = [&](auto&& self, std::uint32_t b) -> unsigned {
+            unsigned n = 0;
+            for (const std::uint32_t c : {bvh.nodes[b].first, bvh.nodes[b].first + 1}) {
+                n += bvh.nodes[c].is_leaf() || wide[c] ? 1 : self(self, c);
+            }
+            return n;
+        };
+        double sum = 0;
+        bool fits = true;
+        for (std::uint32_t b = 0; b < bvh.nodes.size(); ++b) {
+            if (wide[b] != 0) {
+                fits = fits && kids(kids, b) <= N;
+                sum += static_cast<double>(bvh.nodes[b].bounds().surface_area());
+            }
+        }
+        if (fits) {
+            best = std::min(best, sum);
+        }
+    }
+    return best;
+}
+
+TEST_CASE("the sah collapse has the least node area of any collapse", "[accel][wide]") {
+    const auto seed = GENERATE(take(6, random(0u, 1u << 30)));
+    CAPTURE(seed);
+    // Small trees (leaves of one box: up to 16 inner nodes below the root) against every collapse.
+    const test::Soup small = test::random_soup(test::SoupKind::boxes, seed, 15);
+    const Bvh binary = test::build_with(small.boxes, "bvh:binned", 1);
+    REQUIRE(binary.nodes.size() > 20);
+    const auto check_least = [&]<unsigned N>(std::integral_constant<unsigned, N>) {
+        CAPTURE(N);
+        const WideBvh<N> sah = collapse_bvh<N>(binary, ChildOrder::area, WideCollapse::sah);
+        REQUIRE(sah.validate().empty());
+        CHECK(wide_node_area(sah) == Approx(least_collapse_area<N>(binary)).epsilon(1e-6));
+    };
+    check_least(std::integral_constant<unsigned, 4>{});
+    check_least(std::integral_constant<unsigned, 8>{});
+    // Larger trees: never more than the greedy collapse's, and less in some.
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, seed, 3000);
+    const Bvh source = test::build_with(soup.boxes, "bvh:binned", 4);
+    const auto check_greedy = [&]<unsigned N>(std::integral_constant<unsigned, N>) {
+        CAPTURE(N);
+        const WideBvh<N> sah = collapse_bvh<N>(source, ChildOrder::area, WideCollapse::sah);
+        const WideBvh<N> greedy = collapse_bvh<N>(source, ChildOrder::area, WideCollapse::greedy);
+        REQUIRE(sah.validate().empty());
+        CHECK(wide_node_area(sah) < wide_node_area(greedy));
+        CHECK(sah.prim_ids == greedy.prim_ids);  // the same leaves
+    };
+    check_greedy(std::integral_constant<unsigned, 4>{});
+    check_greedy(std::integral_constant<unsigned, 8>{});
+    check_greedy(std::integral_constant<unsigned, 16>{});
 }
 
 TEST_CASE("wide BVH validate() finds broken invariants", "[accel][wide]") {
@@ -381,8 +472,10 @@ TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with th
     CAPTURE(static_cast<int>(kind), count, seed);
     const test::Soup soup = test::random_soup(kind, seed, count);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
-    for (const char* spec : {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,from=lbvh,max_leaf=1",
-                             "bvh16,from=lbvh,max_leaf=1", "bvh4,from=sweep"}) {
+    for (const char* spec :
+         {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,from=lbvh,max_leaf=1",
+          "bvh16,from=lbvh,max_leaf=1", "bvh4,from=sweep", "bvh8,collapse=greedy",
+          "bvh16,collapse=greedy", "bvh4,collapse=greedy,from=lbvh,max_leaf=1"}) {
         CAPTURE(spec);
         const AnyAccel accel = build_accel(spec, soup.input());
         REQUIRE(accel_validate(accel).empty());

@@ -138,14 +138,26 @@ private:
     }
 };
 
+/// Which binary nodes become the wide nodes (accel/bvh/wide_collapse.cpp). `greedy` opens, from a
+/// node's two children on, the inner child of largest surface area until there are N children or
+/// only leaves. `sah` chooses them all at once so that the summed surface area of the wide nodes
+/// (the SAH's expected node visits of a random ray; the leaves are the source tree's either way)
+/// is the least any collapse of the source tree reaches (dynamic programming over the binary
+/// tree, Ylitie, Karras & Laine 2017, section 4.1, without their leaf merging).
+enum class WideCollapse { greedy, sah };
+
 /// BVH4, BVH8 and BVH16 from a binary BVH (accel/bvh/wide_collapse.cpp); taken by value so that a
 /// build's temporary source gives up its prim_ids instead of having them copied.
 template <unsigned N>
-WideBvh<N> collapse_bvh(Bvh binary, ChildOrder order = ChildOrder::area);
+WideBvh<N> collapse_bvh(Bvh binary,
+                        ChildOrder order = ChildOrder::area,
+                        WideCollapse rule = WideCollapse::greedy);
 
-/// The BVH8 of collapse_bvh<8>(binary) with its nodes quantised (qnodes; accel/bvh/
+/// The BVH8 of collapse_bvh<8>(binary, order, rule) with its nodes quantised (qnodes; accel/bvh/
 /// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
-WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order = ChildOrder::area);
+WideBvh<8> quantize_bvh8(Bvh binary,
+                         ChildOrder order = ChildOrder::area,
+                         WideCollapse rule = WideCollapse::greedy);
 
 /// True for WideBvh<N>.
 template <class A>

@@ -96,8 +96,8 @@ QWideNode8 quantize_wide_node(const WideNode<8>& n) {
     return q;
 }
 
-WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order) {
-    WideBvh<8> w = collapse_bvh<8>(std::move(binary), order);
+WideBvh<8> quantize_bvh8(Bvh binary, ChildOrder order, WideCollapse rule) {
+    WideBvh<8> w = collapse_bvh<8>(std::move(binary), order, rule);
     w.qnodes.resize(w.nodes.size());
     tbb::parallel_for(std::size_t{0}, w.nodes.size(),
                       [&](std::size_t i) { w.qnodes[i] = quantize_wide_node(w.nodes[i]); });
