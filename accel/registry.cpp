@@ -253,8 +253,8 @@ ChildOrder child_order_of(const AccelSpec& s) {
 }
 
 // The least-area collapse by default: the same build time as the greedy one (1.65M triangles,
-// 1 thread: bvh8 417 against 419 ms, bvh16 411 against 402), fewer node visits and faster traces
-// on every issue 12 row measured (docs/results.md, issue 12, session 49).
+// 1 thread: bvh8 417 against 419 ms, bvh16 411 against 402), fewer node visits, and 0.99-1.16x
+// the greedy trees' speed on issue 12's rows (docs/results.md, issue 12, session 49).
 const ParamSpec collapse = choice_param("collapse",
                                         1,
                                         {"greedy", "sah"},
@@ -262,17 +262,20 @@ const ParamSpec collapse = choice_param("collapse",
                                         "largest inner child until N children; sah: least "
                                         "summed surface area of the wide nodes (optimal)");
 
+/// The collapse rule a wide row's spec asks for.
+WideCollapse collapse_of(const AccelSpec& s) {
+    return s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah;
+}
+
 /// bvh4, bvh8, bvh16: the source tree collapsed with the spec's order and collapse rule.
 template <unsigned N>
 WideBvh<N> collapse_row(Bvh source, const AccelSpec& s) {
-    return collapse_bvh<N>(std::move(source), child_order_of(s),
-                           s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah);
+    return collapse_bvh<N>(std::move(source), child_order_of(s), collapse_of(s));
 }
 
 /// bvh8q: collapse_row<8> with its nodes quantised.
 WideBvh<8> quantize_row(Bvh source, const AccelSpec& s) {
-    return quantize_bvh8(std::move(source), child_order_of(s),
-                         s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah);
+    return quantize_bvh8(std::move(source), child_order_of(s), collapse_of(s));
 }
 
 /// bvh:pair: the source tree converted with the spec's order.
