@@ -16,9 +16,9 @@
 //       machine slows both halves of a pair, so the ratio holds still where separate medians
 //       drift.
 //   issue12/paired_build/<spec>/<scene>/threads:1  our build of the row (bvh:pbinned and the
-//       wide layouts bvh4, bvh8, bvh16, bvh8q) from the triangle bounds against Embree medium's rtcCommitScene
-//       (geometry upload untimed), one thread, in alternation (order swapped from pair to pair).
-//       3 repetitions of 5 pairs. Counters: ratio (median over the pairs of our time / Embree's:
+//       wide layouts) from the triangle bounds against Embree medium's rtcCommitScene (geometry
+//       upload untimed), one thread, in alternation (order swapped from pair to pair). 3
+//       repetitions of 5 pairs. Counters: ratio (median over the pairs of our time / Embree's:
 //       lower is faster), ratio_q1, ratio_q3, pairs; aggregates as above.
 //   issue12/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
 //       qualities) or medium's trace of the mesh scene with TBB limited to one thread and to two,
