@@ -151,13 +151,13 @@ enum class WideCollapse { greedy, sah };
 template <unsigned N>
 WideBvh<N> collapse_bvh(Bvh binary,
                         ChildOrder order = ChildOrder::area,
-                        WideCollapse rule = WideCollapse::greedy);
+                        WideCollapse rule = WideCollapse::sah);
 
 /// The BVH8 of collapse_bvh<8>(binary, order, rule) with its nodes quantised (qnodes; accel/bvh/
 /// wide_quantize.cpp): traversal reads 128-byte nodes instead of 256-byte ones.
 WideBvh<8> quantize_bvh8(Bvh binary,
                          ChildOrder order = ChildOrder::area,
-                         WideCollapse rule = WideCollapse::greedy);
+                         WideCollapse rule = WideCollapse::sah);
 
 /// True for WideBvh<N>.
 template <class A>

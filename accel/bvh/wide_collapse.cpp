@@ -125,7 +125,7 @@ private:
             Costs l, r;
             tbb::parallel_invoke([&] { l = solve_subtree(node.first, depth + 1); },
                                  [&] { r = solve_subtree(node.first + 1, depth + 1); });
-            return solve(b, &l, &r);
+            return solve(b, l, r);
         }
         std::vector<std::pair<std::uint32_t, bool>> todo{{b, false}};
         std::vector<Costs> solved;
@@ -134,11 +134,11 @@ private:
             todo.pop_back();
             const BvhNode& nn = bvh_.nodes[n];
             if (nn.is_leaf()) {
-                solved.push_back(solve(n, nullptr, nullptr));
+                solved.push_back(solve_leaf(n));
             } else if (children_solved) {
                 const Costs r = solved.back();
                 solved.pop_back();
-                solved.back() = solve(n, &solved.back(), &r);
+                solved.back() = solve(n, solved.back(), r);
             } else {
                 todo.push_back({n, true});
                 todo.push_back({nn.first + 1, false});
@@ -148,29 +148,32 @@ private:
         return solved.back();
     }
 
-    /// Node b's choices from its children's costs (none for a leaf); returns its costs.
-    Costs solve(std::uint32_t b, const Costs* l, const Costs* r) {
+    /// Leaf b: one kid at no cost, whatever the kids allowed.
+    Costs solve_leaf(std::uint32_t b) {
+        choices_[b].split.fill(0);
+        choices_[b].own_left = 0;
+        Costs out;
+        out.cost.fill(0.0f);
+        out.leaves = 1;
+        return out;
+    }
+
+    /// Inner node b's choices from its children's costs l and r; returns its costs.
+    Costs solve(std::uint32_t b, const Costs& l, const Costs& r) {
         Choice& choice = choices_[b];
         Costs out;
-        if (l == nullptr) {
-            choice.split.fill(0);
-            choice.own_left = 0;
-            out.cost.fill(0.0f);
-            out.leaves = 1;
-            return out;
-        }
-        out.leaves = std::min(l->leaves + r->leaves, N);
+        out.leaves = std::min(l.leaves + r.leaves, N);
         // split_cost[j - 1]: the best split of j >= 2 kids, k of them to the left child (the
         // first k of least cost: a comparison that fails on a NaN keeps the first k tried).
         std::array<float, N> split_cost{};
         std::array<std::uint8_t, N> split_k{};
         for (unsigned j = 2; j <= out.leaves; ++j) {
-            const unsigned k_lo = j > r->leaves ? j - r->leaves : 1;
-            const unsigned k_hi = std::min(j - 1, l->leaves);
-            split_cost[j - 1] = l->cost[k_lo - 1] + r->cost[j - k_lo - 1];
+            const unsigned k_lo = j > r.leaves ? j - r.leaves : 1;
+            const unsigned k_hi = std::min(j - 1, l.leaves);
+            split_cost[j - 1] = l.cost[k_lo - 1] + r.cost[j - k_lo - 1];
             split_k[j - 1] = static_cast<std::uint8_t>(k_lo);
             for (unsigned k = k_lo + 1; k <= k_hi; ++k) {
-                const float c = l->cost[k - 1] + r->cost[j - k - 1];
+                const float c = l.cost[k - 1] + r.cost[j - k - 1];
                 if (c < split_cost[j - 1]) {
                     split_cost[j - 1] = c;
                     split_k[j - 1] = static_cast<std::uint8_t>(k);
