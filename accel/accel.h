@@ -109,10 +109,36 @@ inline bool is_usable_box(const Bounds3f& b) {
 /// bounds.
 using ClipFn = std::function<Bounds3f(std::uint32_t id, const Bounds3f& box)>;
 
-/// What a builder receives: one box per primitive (index = primitive id) and an optional clip.
+/// The diagonal directions of the structures' extra slabs: (1, 1, 1), (1, 1, -1), (1, -1, 1) and
+/// (-1, 1, 1), unnormalised (with the box's three axes, the 14-DOP's seven slab directions;
+/// Kay & Kajiya 1986, Klosowski et al. 1998).
+inline constexpr float diag_dirs[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+
+/// A primitive's extents along diag_dirs: every point x of it has lo[k] <= dot(diag_dirs[k], x)
+/// <= hi[k] (exactly: the values are rounded outward).
+struct DiagExtents {
+    float lo[4];
+    float hi[4];
+};
+
+/// Build-time only: the DiagExtents of primitive `id`. Without it, structures that use them take
+/// the extents of the primitive's box, which add nothing to the box.
+using DiagFn = std::function<DiagExtents(std::uint32_t id)>;
+
+/// DiagExtents of a box (its corners'), rounded outward.
+DiagExtents diag_extents_of_box(const Bounds3f& b);
+
+/// DiagExtents from bounds lo[k] <= dot(diag_dirs[k], x) <= hi[k] computed in double from float
+/// data by a few sums and products per term (error below 4 * 2^-53 * mag[k], mag[k] the sum of
+/// the terms' magnitudes): widened by 2^-50 * mag[k], then rounded outward to floats.
+DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const double mag[4]);
+
+/// What a builder receives: one box per primitive (index = primitive id), an optional clip and
+/// optional diagonal extents.
 struct BuildInput {
     std::span<const Bounds3f> bounds;  ///< primitive bounds; must outlive the build call only
     ClipFn clip;                       ///< optional exact clipping for perfect splits
+    DiagFn diag = {};                  ///< optional extents along diag_dirs (wide `bounds=dop14`)
 };
 
 /// Size and quality figures of a built structure, for reports.

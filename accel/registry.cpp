@@ -267,28 +267,44 @@ WideCollapse collapse_of(const AccelSpec& s) {
     return s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah;
 }
 
-/// bvh4, bvh8, bvh16: the source tree collapsed with the spec's order and collapse rule.
+// Diagonal slabs beside the boxes (a 14-DOP per slot): on the SF 5 sphere flake's primary rays,
+// 22% fewer node visits and 39% fewer leaf visits than the boxes alone (docs/results.md, issue
+// 12, session 50).
+const ParamSpec bounds = choice_param("bounds",
+                                      0,
+                                      {"aabb", "dop14"},
+                                      "child bounds; aabb: boxes; dop14: boxes and slabs along "
+                                      "the four diagonals (14-DOPs; plain traversal tests both, "
+                                      "robust traversal the boxes)");
+
+/// bvh4, bvh8, bvh16: the source tree collapsed with the spec's order and collapse rule, with
+/// diagonal slabs when the spec asks for them.
 template <unsigned N>
-WideBvh<N> collapse_row(Bvh source, const AccelSpec& s) {
-    return collapse_bvh<N>(std::move(source), child_order_of(s), collapse_of(s));
+WideBvh<N> collapse_row(Bvh source, const AccelSpec& s, const BuildInput& in) {
+    WideBvh<N> w = collapse_bvh<N>(std::move(source), child_order_of(s), collapse_of(s));
+    if (s.value("bounds") == 1 && !w.nodes.empty()) {
+        add_diag_bounds(w, in);
+    }
+    return w;
 }
 
 /// bvh8q: collapse_row<8> with its nodes quantised.
-WideBvh<8> quantize_row(Bvh source, const AccelSpec& s) {
+WideBvh<8> quantize_row(Bvh source, const AccelSpec& s, const BuildInput&) {
     return quantize_bvh8(std::move(source), child_order_of(s), collapse_of(s));
 }
 
 /// bvh:pair: the source tree converted with the spec's order.
-PairBvh pair_row(Bvh source, const AccelSpec& s) {
+PairBvh pair_row(Bvh source, const AccelSpec& s, const BuildInput&) {
     return PairBvh::convert(std::move(source), child_order_of(s));
 }
 
 /// A layout row (bvh:pair, bvh4, bvh8, ...): the `from` builder's tree (spec's Config) converted
-/// by Convert(tree, spec), the whole row (build, alignment, conversion) on the spec's `threads`.
+/// by Convert(tree, spec, input), the whole row (build, alignment, conversion) on the spec's
+/// `threads`.
 template <auto Convert>
 AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     return with_threads(threads_of(s), [&]() -> AnyAccel {
-        auto layout = Convert(aligned_source(in, s), s);
+        auto layout = Convert(aligned_source(in, s), s, in);
         layout.soa_leaves = s.value("leaves") == 0;
         return layout;
     });
@@ -368,18 +384,18 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
       soa_block, morton_bits, threads},
      &layout_row<&collapse_row<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
       soa_block, morton_bits, threads},
      &layout_row<&collapse_row<8>>},
     {"bvh16",
      "16-wide BVH collapsed from a binary build by surface area, one 16-lane node test (AVX-512; "
      "two 8-lane ones on AVX2)",
-     {from, leaves, leaf_align, child_order, collapse, sah_max_leaf, bins, sah_ct, bvh_ci,
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
       soa_block, morton_bits, threads},
      &layout_row<&collapse_row<16>>},
     {"bvh8q",

@@ -2,7 +2,8 @@
 // embree_issue12.cpp), every row on the same primitives and rays:
 //   issue12/trace/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:<k>
 //       every BVH-family registry row (name starting with "bvh": binary and wide layouts, default
-//       parameters; --accel narrows the list) through SceneTracer with TBB limited to k threads.
+//       parameters, and bvh16 with `bounds=dop14`; --accel names the list instead) through
+//       SceneTracer with TBB limited to k threads.
 //       <methods> is "default" (each family's default method) or "watertight" (the watertight
 //       triangle test, with robust traversal: the issue's watertight row). Counters: rays/s,
 //       nodes/ray and prims/ray (a separate counting pass), bytes/prim (structure) and
@@ -57,6 +58,10 @@ std::vector<std::string> issue12_layout_specs() {
     for (const std::string& s : bench_specs()) {
         if (s.starts_with("bvh")) {
             out.push_back(s);
+            // bvh16 also with diagonal slabs (`bounds=dop14`, a parameter, not a registry row).
+            if (s.starts_with("bvh16,") && !specs_named()) {
+                out.push_back(parse_accel_spec("bvh16,bounds=dop14").canonical());
+            }
         }
     }
     return out;

@@ -35,9 +35,11 @@ def family(accel):
 
 
 def short(accel):
-    """The spec without parameters at their defaults is too long for a table: name + from=."""
+    """The spec without parameters at their defaults is too long for a table: name + from=, and
+    bounds= when it is not the boxes alone."""
     parts = accel.split(",")
-    keep = [p for p in parts[1:] if p.startswith("from=")]
+    keep = [p for p in parts[1:]
+            if p.startswith("from=") or (p.startswith("bounds=") and p != "bounds=aabb")]
     return ",".join([parts[0]] + keep)
 
 

@@ -324,13 +324,14 @@ TEST_CASE("wide BVH children are ordered by surface area, largest first", "[acce
 TEST_CASE("wide BVHs are the same nodes for any thread count", "[accel][wide]") {
     // Deep enough that the subtrees below the serial top levels are collapsed by parallel tasks.
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 20000);
-    for (const std::string wide : {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,collapse=greedy"}) {
+    for (const std::string wide :
+         {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,collapse=greedy", "bvh16,bounds=dop14"}) {
         CAPTURE(wide);
         const std::string spec = wide + ",max_leaf=4,ct=1,threads=";
         const AnyAccel one = build_accel(spec + "1", soup.input());
         REQUIRE(accel_validate(one).empty());
         // Below the collapse's serial top levels (3 for BVH4, 2 for BVH8, 1 for BVH16).
-        REQUIRE(accel_info(one).max_depth > (wide == "bvh16" ? 2 : 4));
+        REQUIRE(accel_info(one).max_depth > (wide.starts_with("bvh16") ? 2 : 4));
         for (const char* threads : {"2", "4", "0"}) {
             CAPTURE(threads);
             CHECK(build_accel(spec + threads, soup.input()) == one);
@@ -464,6 +465,72 @@ TEST_CASE("wide BVH validate() finds broken invariants", "[accel][wide]") {
     CHECK(b.validate().find("enclose") != std::string::npos);
 }
 
+TEST_CASE("diagonal slabs hold every primitive of their slot and break validate() when cut",
+          "[accel][wide]") {
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 11, 3000);
+    const AnyAccel a = build_accel("bvh16,bounds=dop14,max_leaf=4", soup.input());
+    REQUIRE(accel_validate(a).empty());
+    const auto& w = std::get<WideBvh<16>>(a);
+    REQUIRE(w.diags.size() == w.nodes.size());
+    REQUIRE(build_accel("bvh16", soup.input()) != a);  // the same nodes, plus the slabs
+    // Every vertex of every triangle in a leaf slot lies inside the slot's slabs (in double).
+    std::size_t checked = 0, tighter = 0;
+    for (std::size_t node = 0; node < w.nodes.size(); ++node) {
+        const WideNode<16>& n = w.nodes[node];
+        for (unsigned i = 0; i < 16 && n.occupied(i); ++i) {
+            const Bounds3f box = n.bounds(i);
+            for (unsigned k = 0; k < 4; ++k) {
+                const auto dot = [&](const Vec3f& p) {
+                    return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
+                           static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
+                           static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
+                };
+                // The box's own extent in this direction: the slabs cut it where they are below.
+                double box_lo = 0;
+                for (unsigned c = 0; c < 3; ++c) {
+                    box_lo += static_cast<double>(diag_dirs[k][c]) *
+                              static_cast<double>(diag_dirs[k][c] > 0 ? box.lo[c] : box.hi[c]);
+                }
+                tighter += static_cast<double>(w.diags[node].lo[k][i]) > box_lo ? 1 : 0;
+                if (!n.is_leaf(i)) {
+                    continue;
+                }
+                for (std::uint32_t s = n.child[i]; s < n.child[i] + n.count[i]; ++s) {
+                    if (w.prim_ids[s] == padding_slot) {
+                        continue;
+                    }
+                    const auto& t = soup.triangles[w.prim_ids[s]];
+                    for (const Vec3f& p : {t.p0, t.p1, t.p2}) {
+                        CHECK(dot(p) >= static_cast<double>(w.diags[node].lo[k][i]));
+                        CHECK(dot(p) <= static_cast<double>(w.diags[node].hi[k][i]));
+                        ++checked;
+                    }
+                }
+            }
+        }
+    }
+    CHECK(checked >= 3 * 4 * 3000);
+    CHECK(tighter > 0);  // the slabs cut some boxes' corners
+    // Slabs cut inward, or left on an empty slot, are found.
+    WideBvh<16> b = w;
+    b.diags[0].hi[2][0] = b.diags[0].lo[2][0] - 1.0f;
+    CHECK(b.validate().find("diagonal") != std::string::npos);
+    b = w;
+    const std::uint32_t inner = [&] {
+        for (unsigned i = 0; i < 16; ++i) {
+            if (w.nodes[0].occupied(i) && !w.nodes[0].is_leaf(i)) {
+                return i;
+            }
+        }
+        return 0u;
+    }();
+    b.diags[0].lo[1][inner] = b.diags[0].hi[1][inner];
+    CHECK(b.validate().find("outside its parent") != std::string::npos);
+    b = w;
+    b.diags.pop_back();
+    CHECK(b.validate().find("diagonal slab sets") != std::string::npos);
+}
+
 TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with the others",
           "[accel][wide]") {
     const auto kind = GENERATE(test::SoupKind::boxes, test::SoupKind::triangles);
@@ -475,7 +542,8 @@ TEST_CASE("every SIMD level of the wide BVHs agrees with brute force and with th
     for (const char* spec :
          {"bvh4", "bvh8", "bvh16", "bvh8q", "bvh8,from=lbvh,max_leaf=1",
           "bvh16,from=lbvh,max_leaf=1", "bvh4,from=sweep", "bvh8,collapse=greedy",
-          "bvh16,collapse=greedy", "bvh4,collapse=greedy,from=lbvh,max_leaf=1"}) {
+          "bvh16,collapse=greedy", "bvh4,collapse=greedy,from=lbvh,max_leaf=1",
+          "bvh16,bounds=dop14", "bvh8,bounds=dop14", "bvh4,bounds=dop14,from=lbvh,max_leaf=1"}) {
         CAPTURE(spec);
         const AnyAccel accel = build_accel(spec, soup.input());
         REQUIRE(accel_validate(accel).empty());

@@ -1,13 +1,19 @@
 #pragma once
 // Exact-ish clipping of a triangle to a box (Sutherland & Hodgman 1974, polygon clipping against
 // the six slab planes), for kd-tree perfect splits (Havran 2000; Wald & Havran 2006). The result
-// is the bounds of the clipped polygon, intersected with the box to absorb rounding.
+// is the bounds of the clipped polygon, intersected with the box to absorb rounding. And the
+// extents of triangles and spheres along the diagonal directions (accel/accel.h's diag_dirs), for
+// the wide BVHs' `bounds=dop14`.
 
 #include "intersect/bounds.h"
+#include "accel/accel.h"
+#include "intersect/sphere/sphere.h"
 #include "intersect/triangle/triangle.h"
 #include "intersect/vec.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace rtlab {
 
@@ -55,6 +61,45 @@ inline Bounds3f clip_triangle_bounds(const Vec3f& a,
 /// splits in SceneTracer by having a clip_shape_bounds overload.
 inline Bounds3f clip_shape_bounds(const Triangle<float>& t, const Bounds3f& box) {
     return clip_triangle_bounds(t.p0, t.p1, t.p2, box);
+}
+
+/// A triangle's extents along diag_dirs: its vertices', rounded outward.
+inline DiagExtents diag_shape_extents(const Triangle<float>& t) {
+    double lo[4], hi[4], mag[4];
+    for (unsigned k = 0; k < 4; ++k) {
+        const auto dot = [&](const Vec3f& p) {
+            return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
+                   static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
+                   static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
+        };
+        const auto size = [](const Vec3f& p) {
+            return std::abs(static_cast<double>(p.x)) + std::abs(static_cast<double>(p.y)) +
+                   std::abs(static_cast<double>(p.z));
+        };
+        lo[k] = std::min({dot(t.p0), dot(t.p1), dot(t.p2)});
+        hi[k] = std::max({dot(t.p0), dot(t.p1), dot(t.p2)});
+        mag[k] = std::max({size(t.p0), size(t.p1), size(t.p2)});
+    }
+    return diag_extents_rounded(lo, hi, mag);
+}
+
+/// A sphere's extents along diag_dirs: dot(dir, centre) -+ radius * |dir| (|dir| = sqrt(3)),
+/// rounded outward.
+inline DiagExtents diag_shape_extents(const Sphere<float>& s) {
+    const double reach = static_cast<double>(s.radius) * std::sqrt(3.0);
+    const double size = std::abs(static_cast<double>(s.center.x)) +
+                        std::abs(static_cast<double>(s.center.y)) +
+                        std::abs(static_cast<double>(s.center.z)) + reach;
+    double lo[4], hi[4], mag[4];
+    for (unsigned k = 0; k < 4; ++k) {
+        const double c = static_cast<double>(diag_dirs[k][0]) * static_cast<double>(s.center.x) +
+                         static_cast<double>(diag_dirs[k][1]) * static_cast<double>(s.center.y) +
+                         static_cast<double>(diag_dirs[k][2]) * static_cast<double>(s.center.z);
+        lo[k] = c - reach;
+        hi[k] = c + reach;
+        mag[k] = size;
+    }
+    return diag_extents_rounded(lo, hi, mag);
 }
 
 }  // namespace rtlab

@@ -19,6 +19,7 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                     std::vector<std::uint32_t> ids,
                     const AccelSpec& accel,
                     const ClipFn& clip,
+                    const DiagFn& diag,
                     double& build_ms) {
     PrimSet<M> set;
     set.prims.reserve(shapes.size());
@@ -30,7 +31,7 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
     }
     set.ids = std::move(ids);
     const auto t0 = std::chrono::steady_clock::now();
-    set.accel = build_accel(accel, BuildInput{bounds, clip});
+    set.accel = build_accel(accel, BuildInput{bounds, clip, diag});
     build_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     visit_accel(set.accel, [&](const auto& a) {
@@ -86,18 +87,20 @@ struct SetAdder {
     std::vector<std::string>& labels;
     double& build_ms;
 
-    // Adds shapes (global ids `ids`) unless empty; clip enables kd-tree perfect splits.
+    // Adds shapes (global ids `ids`) unless empty; clip enables kd-tree perfect splits, diag the
+    // wide BVHs' exact diagonal slabs.
     template <class Shape>
     void operator()(const std::vector<Shape>& shapes,
                     std::vector<std::uint32_t> ids,
-                    const ClipFn& clip = {}) {
+                    const ClipFn& clip = {},
+                    const DiagFn& diag = {}) {
         if (shapes.empty()) {
             return;
         }
         using Family = FamilyOf<Shape>;
         const std::string_view m = pick_method(family(Family::name), setup.methods);
         const bool found = with_method_named<Shape>(m, [&]<class M>() {
-            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, build_ms));
+            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, diag, build_ms));
         });
         if (!found) {
             throw std::invalid_argument("internal: method " + std::string(m) + " not in its set");
@@ -127,6 +130,17 @@ ClipFn clip_for(const std::vector<S>& shapes) {
         return [&shapes](std::uint32_t i, const Bounds3f& box) {
             return clip_shape_bounds(shapes[i], box);
         };
+    } else {
+        return {};
+    }
+}
+
+/// Exact diagonal extents for shape types with a diag_shape_extents overload (trace/clip.h); the
+/// others' structures take their boxes' corners.
+template <class S>
+DiagFn diag_for(const std::vector<S>& shapes) {
+    if constexpr (requires(const S& s) { diag_shape_extents(s); }) {
+        return [&shapes](std::uint32_t i) { return diag_shape_extents(shapes[i]); };
     } else {
         return {};
     }
@@ -172,8 +186,11 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
         triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
     }
     SetAdder add{setup, accel, sets_, set_methods_, build_ms_};
-    std::apply([&](auto&... b) { (add(b.shapes, std::move(b.ids), clip_for(b.shapes)), ...); },
-               buckets.all);
+    std::apply(
+        [&](auto&... b) {
+            (add(b.shapes, std::move(b.ids), clip_for(b.shapes), diag_for(b.shapes)), ...);
+        },
+        buckets.all);
 }
 
 std::vector<std::pair<CostEstimate, double>> SceneTracer::cost_figures(const CostParams& p,

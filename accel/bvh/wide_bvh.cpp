@@ -26,6 +26,7 @@ AccelInfo WideBvh<N>::info() const {
     AccelInfo info = bvh_detail::size_info(nodes.size(),
                                            nodes.size() * sizeof(WideNode<N>) +
                                                qnodes.size() * sizeof(QWideNode8) +
+                                               diags.size() * sizeof(WideDiag<N>) +
                                                prim_ids.size() * sizeof(std::uint32_t),
                                            prim_count, prim_ids, unreferenced_count);
     if (nodes.empty()) {
@@ -117,6 +118,9 @@ std::string WideBvh<N>::validate() const {
         return e;
     }
     if (std::string e = validate_quantized(); !e.empty()) {
+        return e;
+    }
+    if (std::string e = validate_diags(); !e.empty()) {
         return e;
     }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);

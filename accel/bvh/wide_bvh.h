@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rtlab {
@@ -32,6 +33,9 @@ struct WideBvh {
     /// BVH8 only, empty unless quantised (quantize_bvh8): nodes quantised one for one, which
     /// traversal then reads instead of `nodes` (kept for bounds, info and validate).
     LargeVector<QWideNode8> qnodes;
+    /// Empty, or one per node (add_diag_bounds, `bounds=dop14`): each slot's extents along
+    /// diag_dirs, which plain traversal clips to as well as to the boxes.
+    LargeVector<WideDiag<N>> diags;
     std::vector<std::uint32_t> prim_ids;   ///< leaf slots -> caller's primitive ids
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
@@ -114,10 +118,17 @@ struct WideBvh {
 private:
     /// validate()'s part for qnodes: one per node, the same children, boxes enclosing theirs.
     std::string validate_quantized() const;
+    /// validate()'s part for diags: none or one per node, empty slots empty, occupied ones
+    /// non-empty and enclosing their child node's slots (accel/bvh/wide_diag.cpp).
+    std::string validate_diags() const;
 
     template <class Node>
     WideViewOf<Node> view_of(const LargeVector<Node>& ns) const {
-        return {ns.data(), prim_ids.data(), ns.size() * sizeof(Node) >= prefetch_min_bytes};
+        const WideDiag<N>* d = nullptr;
+        if constexpr (std::is_same_v<Node, WideNode<N>>) {
+            d = diags.empty() ? nullptr : diags.data();
+        }
+        return {ns.data(), prim_ids.data(), ns.size() * sizeof(Node) >= prefetch_min_bytes, d};
     }
 
     template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
@@ -158,6 +169,12 @@ WideBvh<N> collapse_bvh(Bvh binary,
 WideBvh<8> quantize_bvh8(Bvh binary,
                          ChildOrder order = ChildOrder::area,
                          WideCollapse rule = WideCollapse::sah);
+
+/// Fills w.diags: every slot's extents along diag_dirs, from in.diag per primitive (or the
+/// primitive boxes' corners without it) for leaf slots and from the child node's slots for inner
+/// ones (accel/bvh/wide_diag.cpp). `in` is the input w was built from.
+template <unsigned N>
+void add_diag_bounds(WideBvh<N>& w, const BuildInput& in);
 
 /// True for WideBvh<N>.
 template <class A>

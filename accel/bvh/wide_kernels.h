@@ -11,19 +11,22 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <type_traits>
 
 namespace rtlab {
 
 /// What traversal reads of a WideBvh: its nodes (WideNode<N>, or QWideNode8 for a quantised
-/// BVH8) and leaf slots.
+/// BVH8), leaf slots and, with `bounds=dop14`, the nodes' diagonal slabs.
 template <class Node>
 struct WideViewOf {
     const Node* nodes;
     const std::uint32_t* prim_ids;
     bool prefetch;  ///< prefetch hit children (nodes of at least prefetch_min_bytes)
+    const WideDiag<Node::width>* diags;  ///< one per node, or null (boxes only)
 };
 
 /// A traversal stack entry: a child slot's reference and count (as in WideNode) and the entry

@@ -65,6 +65,23 @@ struct alignas(64) WideNode {
 static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
               sizeof(WideNode<16>) == 512);
 
+/// The diagonal slabs of a WideNode<N>'s slots (`bounds=dop14`; the node's boxes and these make
+/// each slot a 14-DOP): lo[k][i] and hi[k][i] bound dot(diag_dirs[k], x) over slot i's
+/// primitives; an empty slot holds lo = +inf, hi = -inf. Kept in an array beside the nodes, one
+/// per node, so the box-only traversal reads the same nodes as without them.
+template <unsigned N>
+struct alignas(64) WideDiag {
+    float lo[4][N];
+    float hi[4][N];
+
+    /// Byte offset of the row of N planes in direction k: minima (side 0) or maxima (side 1).
+    static constexpr std::size_t plane_row(unsigned side, unsigned k) {
+        return (side == 0 ? offsetof(WideDiag, lo) : offsetof(WideDiag, hi)) + k * sizeof(lo[0]);
+    }
+
+    friend bool operator==(const WideDiag&, const WideDiag&) = default;
+};
+
 /// A WideNode<8> with its child boxes quantised to one byte per plane on a per-node grid (Ylitie,
 /// Karras & Laine 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs";
 /// Embree's compressed BVH8 nodes): 128 bytes, two cache lines where WideNode<8> takes four. Plane

@@ -10,6 +10,7 @@
 #include "intersect/box/slabs.h"
 #include "intersect/hit.h"
 #include "intersect/triangle/moller_trumbore.h"
+#include "trace/clip.h"
 
 #include <cmath>
 #include <cstdint>
@@ -67,8 +68,17 @@ struct Soup {
     std::vector<Bounds3f> boxes;                             ///< bounds of each primitive
     std::vector<MollerTrumbore<float>::Prepared> triangles;  ///< triangles (kind == triangles)
 
-    /// What a builder receives.
-    BuildInput input() const { return {boxes, {}}; }
+    /// What a builder receives: the boxes, and the triangles' exact diagonal extents.
+    BuildInput input() const {
+        DiagFn diag;
+        if (kind == SoupKind::triangles) {
+            diag = [this](std::uint32_t id) {
+                const auto& t = triangles[id];
+                return diag_shape_extents(Triangle<float>{t.p0, t.p1, t.p2});
+            };
+        }
+        return {boxes, {}, diag};
+    }
 
     /// The exact primitive test: boxes are hit at the slab entry clipped to [tmin, tmax].
     std::optional<PrimHit<float>> hit(std::uint32_t id, const Rayf& ray) const {
