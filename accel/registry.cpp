@@ -268,8 +268,9 @@ WideCollapse collapse_of(const AccelSpec& s) {
 }
 
 // Diagonal slabs beside the boxes (a 14-DOP per slot): on the SF 5 sphere flake's primary rays,
-// 22% fewer node visits and 39% fewer leaf visits than the boxes alone (docs/results.md, issue
-// 12, session 50).
+// 22% fewer node visits and 39% fewer leaf visits than the boxes alone, 1.14x the speed; on the
+// tessellated flake 0.92-0.98x, so the boxes alone stay the default (docs/results.md, issue 12,
+// session 50).
 const ParamSpec bounds = choice_param("bounds",
                                       0,
                                       {"aabb", "dop14"},
