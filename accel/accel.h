@@ -130,7 +130,9 @@ DiagExtents diag_extents_of_box(const Bounds3f& b);
 
 /// DiagExtents from bounds lo[k] <= dot(diag_dirs[k], x) <= hi[k] computed in double from float
 /// data by a few sums and products per term (error below 4 * 2^-53 * mag[k], mag[k] the sum of
-/// the terms' magnitudes): widened by 2^-50 * mag[k], then rounded outward to floats.
+/// the terms' magnitudes): widened by 2^-22 * mag[k] (a few float ulps, as sphere boxes get one:
+/// the float tests of a primitive may report points a rounding outside its exact shape), then
+/// rounded outward to floats.
 DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const double mag[4]);
 
 /// What a builder receives: one box per primitive (index = primitive id), an optional clip and

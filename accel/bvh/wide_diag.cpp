@@ -66,10 +66,12 @@ void set_slot(WideDiag<N>& d, unsigned i, const DiagExtents& e) {
 
 DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const double mag[4]) {
     // Sums of a few products of floats by +-1 or a double constant, in double: each off by less
-    // than 4 * 2^-53 * mag, which the 2^-50 * mag widening covers before rounding to floats.
+    // than 4 * 2^-53 * mag. The 2^-22 * mag widening covers that and, like the ulp sphere_bounds
+    // adds to a sphere's box, the float primitive tests' own rounding (a sphere tested with
+    // float radius^2 may be hit a rounding outside the exact sphere).
     DiagExtents e;
     for (unsigned k = 0; k < 4; ++k) {
-        const double pad = std::ldexp(mag[k], -50);
+        const double pad = std::ldexp(mag[k], -22);
         e.lo[k] = round_down(lo[k] - pad);
         e.hi[k] = round_up(hi[k] + pad);
     }
