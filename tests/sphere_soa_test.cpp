@@ -7,8 +7,8 @@
 #include "trace/sphere_soa.h"
 
 #include "accel/any_accel.h"
-#include "datasets_gen/sphere_flake.h"
 #include "base/simd.h"
+#include "datasets_gen/sphere_flake.h"
 #include "support/accel_fixtures.h"
 #include "support/ray_block.h"
 #include "trace/scene_tracer.h"

@@ -5,8 +5,8 @@
 // extents of triangles and spheres along the diagonal directions (accel/accel.h's diag_dirs), for
 // the wide BVHs' `bounds=dop14`.
 
-#include "intersect/bounds.h"
 #include "accel/accel.h"
+#include "intersect/bounds.h"
 #include "intersect/sphere/sphere.h"
 #include "intersect/triangle/triangle.h"
 #include "intersect/vec.h"

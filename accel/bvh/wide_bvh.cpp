@@ -23,12 +23,11 @@ Bounds3f WideBvh<N>::bounds() const {
 
 template <unsigned N>
 AccelInfo WideBvh<N>::info() const {
-    AccelInfo info = bvh_detail::size_info(nodes.size(),
-                                           nodes.size() * sizeof(WideNode<N>) +
-                                               qnodes.size() * sizeof(QWideNode8) +
-                                               diags.size() * sizeof(WideDiag<N>) +
-                                               prim_ids.size() * sizeof(std::uint32_t),
-                                           prim_count, prim_ids, unreferenced_count);
+    AccelInfo info = bvh_detail::size_info(
+        nodes.size(),
+        nodes.size() * sizeof(WideNode<N>) + qnodes.size() * sizeof(QWideNode8) +
+            diags.size() * sizeof(WideDiag<N>) + prim_ids.size() * sizeof(std::uint32_t),
+        prim_count, prim_ids, unreferenced_count);
     if (nodes.empty()) {
         return info;
     }
