@@ -114,6 +114,20 @@ using ClipFn = std::function<Bounds3f(std::uint32_t id, const Bounds3f& box)>;
 /// Kay & Kajiya 1986, Klosowski et al. 1998).
 inline constexpr float diag_dirs[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
 
+/// dot(diag_dirs[k], p) in double: each term exact (+-p's component), the two sums rounded (error
+/// below 2 * 2^-53 times |p.x| + |p.y| + |p.z|).
+inline double diag_dot(unsigned k, const Vec3f& p) {
+    return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
+           static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
+           static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
+}
+
+/// The corner of box b lowest along diag_dirs[k] (`low`) or highest.
+inline Vec3f diag_corner(const Bounds3f& b, unsigned k, bool low) {
+    const auto pick = [&](unsigned a) { return (diag_dirs[k][a] > 0) == low ? b.lo[a] : b.hi[a]; };
+    return {pick(0), pick(1), pick(2)};
+}
+
 /// A primitive's extents along diag_dirs: every point x of it has lo[k] <= dot(diag_dirs[k], x)
 /// <= hi[k] (exactly: the values are rounded outward).
 struct DiagExtents {

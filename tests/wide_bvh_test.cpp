@@ -480,17 +480,8 @@ TEST_CASE("diagonal slabs hold every primitive of their slot and break validate(
         for (unsigned i = 0; i < 16 && n.occupied(i); ++i) {
             const Bounds3f box = n.bounds(i);
             for (unsigned k = 0; k < 4; ++k) {
-                const auto dot = [&](const Vec3f& p) {
-                    return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
-                           static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
-                           static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
-                };
                 // The box's own extent in this direction: the slabs cut it where they are below.
-                double box_lo = 0;
-                for (unsigned c = 0; c < 3; ++c) {
-                    box_lo += static_cast<double>(diag_dirs[k][c]) *
-                              static_cast<double>(diag_dirs[k][c] > 0 ? box.lo[c] : box.hi[c]);
-                }
+                const double box_lo = diag_dot(k, diag_corner(box, k, true));
                 tighter += static_cast<double>(w.diags[node].lo[k][i]) > box_lo ? 1 : 0;
                 if (!n.is_leaf(i)) {
                     continue;
@@ -501,8 +492,8 @@ TEST_CASE("diagonal slabs hold every primitive of their slot and break validate(
                     }
                     const auto& t = soup.triangles[w.prim_ids[s]];
                     for (const Vec3f& p : {t.p0, t.p1, t.p2}) {
-                        CHECK(dot(p) >= static_cast<double>(w.diags[node].lo[k][i]));
-                        CHECK(dot(p) <= static_cast<double>(w.diags[node].hi[k][i]));
+                        CHECK(diag_dot(k, p) >= static_cast<double>(w.diags[node].lo[k][i]));
+                        CHECK(diag_dot(k, p) <= static_cast<double>(w.diags[node].hi[k][i]));
                         ++checked;
                     }
                 }

@@ -67,11 +67,7 @@ inline Bounds3f clip_shape_bounds(const Triangle<float>& t, const Bounds3f& box)
 inline DiagExtents diag_shape_extents(const Triangle<float>& t) {
     double lo[4], hi[4], mag[4];
     for (unsigned k = 0; k < 4; ++k) {
-        const auto dot = [&](const Vec3f& p) {
-            return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
-                   static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
-                   static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
-        };
+        const auto dot = [k](const Vec3f& p) { return diag_dot(k, p); };
         const auto size = [](const Vec3f& p) {
             return std::abs(static_cast<double>(p.x)) + std::abs(static_cast<double>(p.y)) +
                    std::abs(static_cast<double>(p.z));
@@ -92,9 +88,7 @@ inline DiagExtents diag_shape_extents(const Sphere<float>& s) {
                         std::abs(static_cast<double>(s.center.z)) + reach;
     double lo[4], hi[4], mag[4];
     for (unsigned k = 0; k < 4; ++k) {
-        const double c = static_cast<double>(diag_dirs[k][0]) * static_cast<double>(s.center.x) +
-                         static_cast<double>(diag_dirs[k][1]) * static_cast<double>(s.center.y) +
-                         static_cast<double>(diag_dirs[k][2]) * static_cast<double>(s.center.z);
+        const double c = diag_dot(k, s.center);
         lo[k] = c - reach;
         hi[k] = c + reach;
         mag[k] = size;

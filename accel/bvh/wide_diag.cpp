@@ -81,11 +81,10 @@ DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const d
 DiagExtents diag_extents_of_box(const Bounds3f& b) {
     double lo[4], hi[4], mag[4];
     for (unsigned k = 0; k < 4; ++k) {
-        lo[k] = hi[k] = mag[k] = 0;
+        lo[k] = diag_dot(k, diag_corner(b, k, true));
+        hi[k] = diag_dot(k, diag_corner(b, k, false));
+        mag[k] = 0;
         for (unsigned a = 0; a < 3; ++a) {
-            const auto d = static_cast<double>(diag_dirs[k][a]);
-            lo[k] += d * static_cast<double>(d > 0 ? b.lo[a] : b.hi[a]);
-            hi[k] += d * static_cast<double>(d > 0 ? b.hi[a] : b.lo[a]);
             mag[k] += std::max(std::abs(static_cast<double>(b.lo[a])),
                                std::abs(static_cast<double>(b.hi[a])));
         }
