@@ -2,7 +2,8 @@
 // embree_issue12.cpp), every row on the same primitives and rays:
 //   issue12/trace/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:<k>
 //       every BVH-family registry row (name starting with "bvh": binary and wide layouts, default
-//       parameters, and bvh16 with `bounds=dop14`; --accel names the list instead) through
+//       parameters, and the variants of issue12_variants: bvh16 with `bounds=dop14`; --accel
+//       names the list instead) through
 //       SceneTracer with TBB limited to k threads.
 //       <methods> is "default" (each family's default method) or "watertight" (the watertight
 //       triangle test, with robust traversal: the issue's watertight row). Counters: rays/s,
@@ -10,7 +11,8 @@
 //       leaf_bytes/prim (SceneTracer::leaf_bytes: the primitive data traversal reads), build_ms,
 //       prims.
 //   issue12/build/<spec>/<scene>/threads:<k>  build time of the row from the scene's triangle
-//       bounds, TBB limited to k threads; build_ms is the median of the timed builds.
+//       bounds (and, for `bounds=dop14`, the triangles' diagonal extents, as SceneTracer builds),
+//       TBB limited to k threads; build_ms is the median of the timed builds.
 //   issue12/scaling/<spec>/<build|kind>/<scene>/threads:2  the same build (every row) or trace of
 //       the mesh scene (the paired layouts) with TBB limited to one thread and to two, timed in
 //       alternation (bench/paired.h), 3 repetitions of 7 pairs. Counters per repetition: ratio
@@ -53,14 +55,20 @@ benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b
     return b->MinTime(quick_mode() ? 0.01 : 0.2);
 }
 
+// Parameter variants timed beside their rows' defaults (unless --accel names the list).
+constexpr const char* issue12_variants[] = {"bvh16,bounds=dop14"};
+
 std::vector<std::string> issue12_layout_specs() {
     std::vector<std::string> out;
     for (const std::string& s : bench_specs()) {
-        if (s.starts_with("bvh")) {
-            out.push_back(s);
-            // bvh16 also with diagonal slabs (`bounds=dop14`, a parameter, not a registry row).
-            if (s.starts_with("bvh16,") && !specs_named()) {
-                out.push_back(parse_accel_spec("bvh16,bounds=dop14").canonical());
+        if (!s.starts_with("bvh")) {
+            continue;
+        }
+        out.push_back(s);
+        for (const char* v : issue12_variants) {
+            const AccelSpec variant = parse_accel_spec(v);
+            if (!specs_named() && variant.entry == parse_accel_spec(s).entry) {
+                out.push_back(variant.canonical());
             }
         }
     }
@@ -143,14 +151,16 @@ void bm_trace(benchmark::State& state, Issue12Key key, RayKind kind, int threads
 }
 
 void bm_build(benchmark::State& state, std::string accel, std::string scene, int threads) {
-    const std::vector<Bounds3f> bounds = triangle_bounds(bench_scene(scene).scene);
+    const Scene& sc = bench_scene(scene).scene;
+    const std::vector<Bounds3f> bounds = triangle_bounds(sc);
+    const BuildInput in{bounds, {}, triangle_diag(sc)};
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
     std::vector<double> ms;
     AccelInfo info;
     for (auto _ : state) {
         const auto t0 = std::chrono::steady_clock::now();
-        AnyAccel a = build_accel(accel, BuildInput{bounds, {}});
+        AnyAccel a = build_accel(accel, in);
         const auto t1 = std::chrono::steady_clock::now();
         const double s = std::chrono::duration<double>(t1 - t0).count();
         state.SetIterationTime(s);
@@ -173,8 +183,10 @@ void bm_scaling_trace(benchmark::State& state, Issue12Key key, RayKind kind) {
 }
 
 void bm_scaling_build(benchmark::State& state, std::string accel, std::string scene) {
-    const std::vector<Bounds3f> bounds = triangle_bounds(bench_scene(scene).scene);
-    time_scaling(state, [&] { return seconds_to_build(accel, bounds); });
+    const Scene& sc = bench_scene(scene).scene;
+    const std::vector<Bounds3f> bounds = triangle_bounds(sc);
+    const BuildInput in{bounds, {}, triangle_diag(sc)};
+    time_scaling(state, [&] { return seconds_to_build(accel, in); });
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "bench/benchmarks.h"
 #include "bench/paired.h"
 #include "datasets_gen/generators.h"
+#include "trace/clip.h"
 
 #include <memory>
 #include <optional>
@@ -206,9 +207,20 @@ std::vector<Bounds3f> triangle_bounds(const Scene& s) {
     return out;
 }
 
-double seconds_to_build(const std::string& spec, const std::vector<Bounds3f>& bounds) {
+DiagFn triangle_diag(const Scene& s) {
+    auto tris = std::make_shared<std::vector<Trianglef>>();
+    for (const MeshObject& m : s.meshes) {
+        for (const auto& t : m.mesh.triangles) {
+            const auto& p = m.mesh.positions;
+            tris->push_back({p[t[0]], p[t[1]], p[t[2]]});
+        }
+    }
+    return [tris](std::uint32_t id) { return diag_shape_extents((*tris)[id]); };
+}
+
+double seconds_to_build(const std::string& spec, const BuildInput& in) {
     std::optional<AnyAccel> a;
-    const double t = seconds_once([&] { a.emplace(build_accel(spec, BuildInput{bounds, {}})); });
+    const double t = seconds_once([&] { a.emplace(build_accel(spec, in)); });
     benchmark::DoNotOptimize(a);
     return t;
 }

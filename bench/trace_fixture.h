@@ -80,9 +80,13 @@ const Scene& build_soup(int sf);
 /// Triangle bounds of a mesh-only scene, in primitive order.
 std::vector<Bounds3f> triangle_bounds(const Scene& s);
 
-/// Seconds to build structure `spec` over `bounds` (build_accel; the structure is freed after the
+/// The exact diagonal extents of a mesh-only scene's triangles, in primitive order, computed on
+/// call as SceneTracer's builds compute them (`bounds=dop14`); holds its own copy of the triangles.
+DiagFn triangle_diag(const Scene& s);
+
+/// Seconds to build structure `spec` from `in` (build_accel; the structure is freed after the
 /// clock stopped).
-double seconds_to_build(const std::string& spec, const std::vector<Bounds3f>& bounds);
+double seconds_to_build(const std::string& spec, const BuildInput& in);
 
 /// Applies quick mode to a registered benchmark: a 0.02 s minimum time instead of the default.
 benchmark::internal::Benchmark* quick_time(benchmark::internal::Benchmark* b);
