@@ -64,6 +64,10 @@ struct AccelEntry {
 /// Every registered structure/builder, in a fixed order (brute force first).
 std::span<const AccelEntry> accel_registry();
 
+/// Parameter variants that reports run beside the rows' defaults as layouts of their own (the
+/// issue 12 benchmarks, the stability suite's leak cases): specs, not registry rows.
+std::span<const std::string_view> accel_variants();
+
 /// The row called `name` (a bare name, no parameters), or nullptr.
 const AccelEntry* find_accel(std::string_view name);
 

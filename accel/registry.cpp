@@ -430,4 +430,10 @@ std::span<const AccelEntry> accel_registry() {
     return registry_rows;
 }
 
+std::span<const std::string_view> accel_variants() {
+    // bvh16 with diagonal slabs: the fastest layout on the analytic sphere flakes.
+    static constexpr std::string_view variants[] = {"bvh16,bounds=dop14"};
+    return variants;
+}
+
 }  // namespace rtlab

@@ -2,7 +2,7 @@
 // embree_issue12.cpp), every row on the same primitives and rays:
 //   issue12/trace/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:<k>
 //       every BVH-family registry row (name starting with "bvh": binary and wide layouts, default
-//       parameters, and the variants of issue12_variants: bvh16 with `bounds=dop14`; --accel
+//       parameters, and accel_variants(): bvh16 with `bounds=dop14`; --accel
 //       names the list instead) through
 //       SceneTracer with TBB limited to k threads.
 //       <methods> is "default" (each family's default method) or "watertight" (the watertight
@@ -55,9 +55,6 @@ benchmark::internal::Benchmark* issue12_timing(benchmark::internal::Benchmark* b
     return b->MinTime(quick_mode() ? 0.01 : 0.2);
 }
 
-// Parameter variants timed beside their rows' defaults (unless --accel names the list).
-constexpr const char* issue12_variants[] = {"bvh16,bounds=dop14"};
-
 std::vector<std::string> issue12_layout_specs() {
     std::vector<std::string> out;
     for (const std::string& s : bench_specs()) {
@@ -65,7 +62,8 @@ std::vector<std::string> issue12_layout_specs() {
             continue;
         }
         out.push_back(s);
-        for (const char* v : issue12_variants) {
+        // accel_variants() beside their rows' defaults, unless --accel names the list.
+        for (const std::string_view v : accel_variants()) {
             const AccelSpec variant = parse_accel_spec(v);
             if (!specs_named() && variant.entry == parse_accel_spec(s).entry) {
                 out.push_back(variant.canonical());

@@ -50,6 +50,18 @@ std::vector<Row> run_degenerate(const Options& opt, const Selection& sel);
 /// run_structures restricted to `sel` (plain/robust, brute, split_rays).
 std::vector<Row> run_structures(const Options& opt, const Selection& sel);
 
+/// The leak cases' structures (watertight, intgrid): every registry row by name, then
+/// accel_variants().
+std::vector<std::string> leak_case_specs();
+
+/// The rows of a leak case: every triangle method (float; occlusion-only ones through any-hit) x
+/// leak_case_specs() x plain and robust traversal selected by `sel`, over `scene`'s one mesh,
+/// one thread; a ray of `rays` that hits nothing is a leak.
+std::vector<Row> leak_rows(std::string_view case_name,
+                           const Scene& scene,
+                           const std::vector<Rayf>& rays,
+                           const Selection& sel);
+
 /// True when sel runs structure `accel` with traversal `robust`.
 bool selected(const Selection& sel, std::string_view accel, bool robust);
 

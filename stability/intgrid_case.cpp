@@ -4,15 +4,12 @@
 // or square diagonals (the shared edge of a square's two triangles). Half start inside the cube,
 // half outside aimed at it: every ray must hit. Every triangle method x structure x robust on/off.
 #include "datasets_gen/generators.h"
-#include "intersect/triangle/methods.h"
 #include "stability/case_util.h"
 #include "stability/cases.h"
 #include "stability/fixtures.h"
-#include "trace/scene_tracer.h"
 
 #include <cmath>
 #include <string>
-#include <tbb/global_control.h>
 
 namespace rtlab::stab {
 
@@ -80,47 +77,11 @@ std::vector<Row> run_intgrid(const Options& opt) {
 }
 
 std::vector<Row> run_intgrid(const Options& opt, const Selection& sel) {
-    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     gen::GenOptions g;
     g.size = 3;
     const Scene scene = gen::generate("intgrid", g);
     const float h = scene.meshes[0].mesh.bounds().hi.x;
-    const std::vector<Rayf> rays = lattice_rays(h, opt.rays, opt.seed);
-    std::vector<Row> rows;
-    // Every triangle method of the family list, float (occlusion-only ones through any-hit).
-    for_each_type<TriangleMethods<float>>([&]<class M>() {
-        const std::string_view method = M::name;
-        if (!selected_method(sel, method)) {
-            return;
-        }
-        const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
-        for (const bool robust : {false, true}) {
-            for (const AccelEntry& e : accel_registry()) {
-                if (!selected_method(sel, method) || !selected(sel, e.name, robust)) {
-                    continue;
-                }
-                TraceSetup setup;
-                setup.accel = std::string(e.name);
-                setup.methods = {std::string(method)};
-                setup.robust = robust;
-                const SceneTracer tracer(scene, setup);
-                const bool any = !IntersectionMethod<M>;
-                const Stopwatch sw;
-                const std::vector<Hit> hits = trace_all(tracer, rays, any);
-                const double ns = sw.ns() / static_cast<double>(rays.size());
-                std::size_t leaks = 0;
-                for (const Hit& hit : hits) {
-                    leaks += hit.valid() ? 0 : 1;
-                }
-                rows.push_back(make_row(
-                    "intgrid",
-                    std::string(method) + " + " + std::string(e.name) + " " + robust_label(robust),
-                    "float", rays.size(), leaks, "leaks", ns,
-                    std::string(any ? "any-hit; " : "") + leak_note(leaks, own, robust)));
-            }
-        }
-    });
-    return rows;
+    return leak_rows("intgrid", scene, lattice_rays(h, opt.rays, opt.seed), sel);
 }
 
 }  // namespace rtlab::stab

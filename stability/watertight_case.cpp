@@ -76,6 +76,15 @@ std::vector<Rayf> inside_rays(const TriangleMesh& mesh, std::size_t count, std::
     return rays;
 }
 
+std::vector<std::string> leak_case_specs() {
+    std::vector<std::string> out;
+    for (const AccelEntry& e : accel_registry()) {
+        out.emplace_back(e.name);
+    }
+    out.insert(out.end(), accel_variants().begin(), accel_variants().end());
+    return out;
+}
+
 bool selected(const Selection& sel, std::string_view accel, bool robust) {
     return (robust ? sel.robust : sel.plain) && (sel.brute || accel != "brute");
 }
@@ -89,10 +98,11 @@ std::vector<Row> run_watertight(const Options& opt) {
     return run_watertight(opt, Selection{});
 }
 
-std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
+std::vector<Row> leak_rows(std::string_view case_name,
+                           const Scene& scene,
+                           const std::vector<Rayf>& rays,
+                           const Selection& sel) {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-    const Scene scene = mesh_scene(watertight_sphere(opt.seed));
-    const std::vector<Rayf> rays = inside_rays(scene.meshes[0].mesh, opt.rays, opt.seed);
     std::vector<Row> rows;
     // Every triangle method of the family list, float (occlusion-only ones through any-hit).
     for_each_type<TriangleMethods<float>>([&]<class M>() {
@@ -102,12 +112,12 @@ std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
         }
         const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
         for (const bool robust : {false, true}) {
-            for (const AccelEntry& e : accel_registry()) {
-                if (!selected_method(sel, method) || !selected(sel, e.name, robust)) {
+            for (const std::string& spec : leak_case_specs()) {
+                if (!selected(sel, spec, robust)) {
                     continue;
                 }
                 TraceSetup setup;
-                setup.accel = std::string(e.name);
+                setup.accel = spec;
                 setup.methods = {std::string(method)};
                 setup.robust = robust;
                 const SceneTracer tracer(scene, setup);
@@ -123,14 +133,20 @@ std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
                 if (any) {
                     note = "any-hit (occlusion-only method)" + (note.empty() ? "" : "; " + note);
                 }
-                rows.push_back(make_row(
-                    "watertight",
-                    std::string(method) + " + " + std::string(e.name) + " " + robust_label(robust),
-                    "float", rays.size(), leaks, "leaks", ns, note));
+                rows.push_back(
+                    make_row(std::string(case_name),
+                             std::string(method) + " + " + spec + " " + robust_label(robust),
+                             "float", rays.size(), leaks, "leaks", ns, note));
             }
         }
     });
     return rows;
+}
+
+std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
+    const Scene scene = mesh_scene(watertight_sphere(opt.seed));
+    return leak_rows("watertight", scene, inside_rays(scene.meshes[0].mesh, opt.rays, opt.seed),
+                     sel);
 }
 
 }  // namespace rtlab::stab

@@ -148,29 +148,29 @@ static rtlab::stab::Selection watertight_robust_only() {
 TEST_CASE("stability watertight: watertight + robust never leaks on any structure", "[stability]") {
     const std::vector<Row> rows = rtlab::stab::run_watertight({}, watertight_robust_only());
     log_failures(rows);
-    REQUIRE(rows.size() == rtlab::accel_registry().size());
-    CHECK(require_watertight_robust_tight(rows) == rtlab::accel_registry().size());
+    REQUIRE(rows.size() == rtlab::stab::leak_case_specs().size());
+    CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 TEST_CASE("stability watertight, every method, structure and traversal", "[.stability-full]") {
     const std::vector<Row> rows = rtlab::stab::run_watertight({});
     log_failures(rows);
-    REQUIRE(rows.size() == 4 * 2 * rtlab::accel_registry().size());
-    CHECK(require_watertight_robust_tight(rows) == rtlab::accel_registry().size());
+    REQUIRE(rows.size() == 4 * 2 * rtlab::stab::leak_case_specs().size());
+    CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 TEST_CASE("stability intgrid: lattice rays never leak with watertight + robust", "[stability]") {
     const std::vector<Row> rows = rtlab::stab::run_intgrid({}, watertight_robust_only());
     log_failures(rows);
-    REQUIRE(rows.size() == rtlab::accel_registry().size());
-    CHECK(require_watertight_robust_tight(rows) == rtlab::accel_registry().size());
+    REQUIRE(rows.size() == rtlab::stab::leak_case_specs().size());
+    CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 TEST_CASE("stability intgrid, every method, structure and traversal", "[.stability-full]") {
     const std::vector<Row> rows = rtlab::stab::run_intgrid({});
     log_failures(rows);
-    REQUIRE(rows.size() == 4 * 2 * rtlab::accel_registry().size());
-    CHECK(require_watertight_robust_tight(rows) == rtlab::accel_registry().size());
+    REQUIRE(rows.size() == 4 * 2 * rtlab::stab::leak_case_specs().size());
+    CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 /// Invalid rays never traverse; robust degenerate rays agree with the box-free loop.
