@@ -2,9 +2,8 @@
 // embree_issue12.cpp), every row on the same primitives and rays:
 //   issue12/trace/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:<k>
 //       every BVH-family registry row (name starting with "bvh": binary and wide layouts, default
-//       parameters, and accel_variants(): bvh16 with `bounds=dop14`; --accel
-//       names the list instead) through
-//       SceneTracer with TBB limited to k threads.
+//       parameters, and accel_variants(): bvh16 with `bounds=dop14`; --accel names the list
+//       instead) through SceneTracer with TBB limited to k threads.
 //       <methods> is "default" (each family's default method) or "watertight" (the watertight
 //       triangle test, with robust traversal: the issue's watertight row). Counters: rays/s,
 //       nodes/ray and prims/ray (a separate counting pass), bytes/prim (structure) and
