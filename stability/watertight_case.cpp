@@ -103,6 +103,7 @@ std::vector<Row> leak_rows(std::string_view case_name,
                            const std::vector<Rayf>& rays,
                            const Selection& sel) {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    const std::vector<std::string> specs = leak_case_specs();
     std::vector<Row> rows;
     // Every triangle method of the family list, float (occlusion-only ones through any-hit).
     for_each_type<TriangleMethods<float>>([&]<class M>() {
@@ -112,7 +113,7 @@ std::vector<Row> leak_rows(std::string_view case_name,
         }
         const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
         for (const bool robust : {false, true}) {
-            for (const std::string& spec : leak_case_specs()) {
+            for (const std::string& spec : specs) {
                 if (!selected(sel, spec, robust)) {
                     continue;
                 }

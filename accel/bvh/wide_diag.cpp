@@ -143,16 +143,17 @@ std::string WideBvh<N>::validate_diags() const {
     for (std::size_t node = 0; node < nodes.size(); ++node) {
         const WideNode<N>& n = nodes[node];
         for (unsigned i = 0; i < N; ++i) {
-            const std::string where =
-                "node " + std::to_string(node) + " slot " + std::to_string(i) + ": ";
+            const auto where = [&] {
+                return "node " + std::to_string(node) + " slot " + std::to_string(i) + ": ";
+            };
             const DiagExtents e = slot_extents(diags[node], i);
             for (unsigned k = 0; k < 4; ++k) {
                 if (!n.occupied(i)) {
                     if (e.lo[k] != inf || e.hi[k] != -inf) {
-                        return where + "empty slot with diagonal slabs";
+                        return where() + "empty slot with diagonal slabs";
                     }
                 } else if (!(e.lo[k] <= e.hi[k])) {
-                    return where + "empty or NaN diagonal slab";
+                    return where() + "empty or NaN diagonal slab";
                 }
             }
             if (!n.occupied(i) || n.is_leaf(i)) {
@@ -163,7 +164,7 @@ std::string WideBvh<N>::validate_diags() const {
                 const DiagExtents ce = slot_extents(diags[n.child[i]], j);
                 for (unsigned k = 0; k < 4; ++k) {
                     if (ce.lo[k] < e.lo[k] || ce.hi[k] > e.hi[k]) {
-                        return where + "a child's diagonal slab outside its parent's";
+                        return where() + "a child's diagonal slab outside its parent's";
                     }
                 }
             }
