@@ -404,4 +404,17 @@ double end_point_overlap(const AnyAccel& a,
     });
 }
 
+std::vector<Bounds3f> bvh_node_boxes(const AnyAccel& a) {
+    return visit_accel(a, [&](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        std::vector<Bounds3f> boxes;
+        if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>) {
+            for (const FlatNode& n : flatten(s).nodes) {
+                boxes.push_back(n.box);
+            }
+        }
+        return boxes;
+    });
+}
+
 }  // namespace rtlab

@@ -23,6 +23,7 @@
 #include "intersect/triangle/triangle.h"
 
 #include <span>
+#include <vector>
 
 namespace rtlab {
 
@@ -72,5 +73,9 @@ double end_point_overlap(const AnyAccel& a,
 
 /// True when end_point_overlap applies to the structure a holds (a BVH layout).
 bool has_end_point_overlap(const AnyAccel& a);
+
+/// The box of every node of the BVH layout a holds (binary, pair, wide: each child slot's box as
+/// traversal tests it, quantised ones decoded), root first; empty for other structures.
+std::vector<Bounds3f> bvh_node_boxes(const AnyAccel& a);
 
 }  // namespace rtlab

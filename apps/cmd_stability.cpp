@@ -158,7 +158,18 @@ int run_stability(const StabilityArgs& a) {
                              results.size(), total_failures,
                              a.markdown.empty() ? "" : ", markdown: " + a.markdown,
                              a.json.empty() ? "" : ", json: " + a.json);
-    return 0;
+    // A row the suite classifies as a defect of rtlab (not of a method under test) fails the run.
+    std::size_t defects = 0;
+    for (const stab::CaseResult& r : results) {
+        for (const stab::Row& row : r.rows) {
+            if (row.defect) {
+                std::cerr << fmt::format("rtlab stability: defect: {} | {} | {}\n", row.case_name,
+                                         row.subject, row.note);
+                ++defects;
+            }
+        }
+    }
+    return defects == 0 ? 0 : 1;
 }
 
 }  // namespace

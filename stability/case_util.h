@@ -130,45 +130,4 @@ inline std::vector<Hit> trace_all(const SceneTracer& tracer,
     return hits;
 }
 
-/// Rays that no triangle of `mesh` stops when each is tested by triangle method M (float)
-/// directly, without boxes or a structure: the method's own leaks, which every structure shares.
-/// The ray's set-up is computed once per ray, as traversal does.
-template <class M>
-std::size_t method_leaks(const TriangleMesh& mesh, const std::vector<Rayf>& rays) {
-    std::vector<typename M::Prepared> prims;
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-        const auto c = mesh.corners(i);
-        prims.push_back(M::prepare({c[0], c[1], c[2]}));
-    }
-    std::size_t leaks = 0;
-    for (const Rayf& r : rays) {
-        const RayDataOf<M> data = precompute_ray<M>(r);
-        bool hit = false;
-        for (const auto& p : prims) {
-            if (occluded_with<M>(p, r, data)) {
-                hit = true;
-                break;
-            }
-        }
-        leaks += hit ? 0 : 1;
-    }
-    return leaks;
-}
-
-/// The note of a leak row: how many leaks the method makes by itself and what the traversal adds.
-inline std::string leak_note(std::size_t leaks, std::size_t own, bool robust) {
-    if (leaks == 0) {
-        return {};
-    }
-    std::string note = "the method alone (box-free loop) leaks " + std::to_string(own) +
-                       (own > 0 ? " (rounding at shared edges and vertices)" : "");
-    if (leaks > own) {
-        note += "; traversal adds " + std::to_string(leaks - own) +
-                (robust ? ": robust traversal lost rays (a bug)"
-                        : ": the plain slab test rounds a box the exact ray touches to a miss "
-                          "(robust traversal pads it)");
-    }
-    return note;
-}
-
 }  // namespace rtlab::stab

@@ -32,6 +32,10 @@ std::vector<Row> run_needles(const Options& opt);
 /// Tangent, grazing and axial rays on a torus: missed roots and t error of the implicit methods.
 std::vector<Row> run_implicit(const Options& opt);
 
+/// Rays from inside strongly jittered closed meshes at their vertices and edges and at the built
+/// structure's own planes, and within rounding of those planes: leaks.
+std::vector<Row> run_adversarial(const Options& opt);
+
 /// Axis-aligned rays through the edges and vertices of the intgrid mesh: leaks.
 std::vector<Row> run_intgrid(const Options& opt);
 

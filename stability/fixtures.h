@@ -4,13 +4,16 @@
 // points with a subject selection, so the fast tests run only the subjects whose property they
 // assert while the report runs the whole matrix.
 
+#include "accel/any_accel.h"
 #include "intersect/ray.h"
 #include "mesh/triangle_mesh.h"
 #include "scene/scene.h"
 #include "stability/stability.h"
+#include "trace/scene_tracer.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +35,22 @@ Scene mesh_scene(TriangleMesh mesh);
 /// count, seed).
 std::vector<Rayf> inside_rays(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed);
 
+/// The adversarial case's closed meshes (scene each): UV spheres of several resolutions with
+/// vertex radii jittered by 10 to 45 %, star-shaped around the origin; seeded.
+std::vector<Scene> adversarial_scenes(std::uint64_t seed);
+
+/// `count` rays from the kernel of `mesh` (one of adversarial_scenes) that must all hit it, made
+/// for the structure `accel` built over it: at vertices (from the exact centre, exactly through
+/// them, and from kernel points), at shared-edge points, at points on accel's own planes
+/// (stability/structure_planes.h: inside their faces, on face edges, at corners), and starting on
+/// or one float beside a plane through the kernel with a direction 1e-9..1e-1 (or exactly 0) along
+/// its normal, and from 10 to 1e4 radii away into the kernel. Deterministic for (mesh, structure,
+/// count, seed).
+std::vector<Rayf> adversarial_rays(const TriangleMesh& mesh,
+                                   const AnyAccel& accel,
+                                   std::size_t count,
+                                   std::uint64_t seed);
+
 /// Which subjects a case runs; the default is the whole matrix (what the report shows).
 struct Selection {
     std::vector<std::string> methods;  ///< triangle method names; empty means every method
@@ -43,6 +62,8 @@ struct Selection {
 
 /// run_watertight restricted to `sel` (methods, plain/robust, brute).
 std::vector<Row> run_watertight(const Options& opt, const Selection& sel);
+/// run_adversarial restricted to `sel` (methods, plain/robust, brute).
+std::vector<Row> run_adversarial(const Options& opt, const Selection& sel);
 /// run_intgrid restricted to `sel` (methods, plain/robust, brute).
 std::vector<Row> run_intgrid(const Options& opt, const Selection& sel);
 /// run_degenerate restricted to `sel` (plain/robust, brute; the method is always watertight).
@@ -54,12 +75,18 @@ std::vector<Row> run_structures(const Options& opt, const Selection& sel);
 /// accel_variants().
 std::vector<std::string> leak_case_specs();
 
+/// The rays of a leak case for scene k, given a tracer built over it with the subject's
+/// structure (so rays may be aimed at the structure's own planes); the same for every method and
+/// traversal of one structure.
+using LeakRays = std::function<std::vector<Rayf>(std::size_t k, const SceneTracer& tracer)>;
+
 /// The rows of a leak case: every triangle method (float; occlusion-only ones through any-hit) x
-/// leak_case_specs() x plain and robust traversal selected by `sel`, over `scene`'s one mesh,
-/// one thread; a ray of `rays` that hits nothing is a leak.
+/// leak_case_specs() x plain and robust traversal selected by `sel`, each over every scene (one
+/// closed mesh each) with rays_for's rays, one thread; a ray that hits nothing is a leak, and a
+/// row whose robust traversal lost rays (stability/leak_tally.h) is a defect.
 std::vector<Row> leak_rows(std::string_view case_name,
-                           const Scene& scene,
-                           const std::vector<Rayf>& rays,
+                           const std::vector<Scene>& scenes,
+                           const LeakRays& rays_for,
                            const Selection& sel);
 
 /// True when sel runs structure `accel` with traversal `robust`.

@@ -79,9 +79,11 @@ std::vector<Row> run_intgrid(const Options& opt) {
 std::vector<Row> run_intgrid(const Options& opt, const Selection& sel) {
     gen::GenOptions g;
     g.size = 3;
-    const Scene scene = gen::generate("intgrid", g);
-    const float h = scene.meshes[0].mesh.bounds().hi.x;
-    return leak_rows("intgrid", scene, lattice_rays(h, opt.rays, opt.seed), sel);
+    const std::vector<Scene> scenes{gen::generate("intgrid", g)};
+    const float h = scenes[0].meshes[0].mesh.bounds().hi.x;
+    const std::vector<Rayf> rays = lattice_rays(h, opt.rays, opt.seed);
+    return leak_rows(
+        "intgrid", scenes, [&](std::size_t, const SceneTracer&) { return rays; }, sel);
 }
 
 }  // namespace rtlab::stab

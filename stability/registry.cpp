@@ -15,6 +15,15 @@ const Case all_cases[] = {
      "vertices, at shared-edge points) must all hit: leaks per triangle method, structure and "
      "traversal (float).",
      &run_watertight},
+    {"adversarial",
+     "Rays that must all hit, generated to find each structure's weak spots: from the kernel of "
+     "closed UV spheres with vertex radii jittered by 10-45 % (6 meshes, 168 to 2,976 "
+     "triangles) at vertices, shared-edge points and points on the built structure's own planes "
+     "(kd split planes, grid cell boundaries, BVH box faces; inside, on edges, at corners), and "
+     "starting on or one float beside such a plane, nearly or exactly parallel to it, and from "
+     "10 to 1e4 radii away into the kernel: leaks per "
+     "triangle method, structure and traversal (float).",
+     &run_adversarial},
     {"intgrid",
      "Axis-aligned rays whose origins lie on the lattice lines of the intgrid mesh (closed cube "
      "[-4, 4]^3) pass exactly through shared edges, vertices and square diagonals; all must hit. "

@@ -34,6 +34,9 @@ struct Row {
     double median_rel_t_err = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not measured
     double ns_per_ray = std::numeric_limits<double>::quiet_NaN();        ///< single thread
     std::string note;  ///< cause of the failures when known, or anything a reader must know
+    /// The case classifies (some of) the failures as a defect of rtlab, not of the method under
+    /// test (e.g. rays lost by robust traversal); every test of the suite fails on such a row.
+    bool defect = false;
 };
 
 /// One case of the suite.

@@ -8,6 +8,7 @@
 #include "stability/case_util.h"
 #include "stability/cases.h"
 #include "stability/fixtures.h"
+#include "stability/leak_tally.h"
 #include "trace/scene_tracer.h"
 
 #include <algorithm>
@@ -99,55 +100,79 @@ std::vector<Row> run_watertight(const Options& opt) {
 }
 
 std::vector<Row> leak_rows(std::string_view case_name,
-                           const Scene& scene,
-                           const std::vector<Rayf>& rays,
+                           const std::vector<Scene>& scenes,
+                           const LeakRays& rays_for,
                            const Selection& sel) {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const std::vector<std::string> specs = leak_case_specs();
-    std::vector<Row> rows;
-    // Every triangle method of the family list, float (occlusion-only ones through any-hit).
+    // One subject per (method, robust, spec), tallied over every scene.
+    struct Subject {
+        std::string_view method;
+        bool robust = false;
+        bool any = false;
+        std::string spec;
+        std::size_t rays = 0;
+        double ns = 0;
+        LeakTally tally;
+    };
+    std::vector<Subject> subjects;
     for_each_type<TriangleMethods<float>>([&]<class M>() {
-        const std::string_view method = M::name;
-        if (!selected_method(sel, method)) {
-            return;
-        }
-        const std::size_t own = method_leaks<M>(scene.meshes[0].mesh, rays);
         for (const bool robust : {false, true}) {
             for (const std::string& spec : specs) {
-                if (!selected(sel, spec, robust)) {
-                    continue;
+                if (selected_method(sel, M::name) && selected(sel, spec, robust)) {
+                    subjects.push_back({M::name, robust, !IntersectionMethod<M>, spec, 0, 0, {}});
                 }
-                TraceSetup setup;
-                setup.accel = spec;
-                setup.methods = {std::string(method)};
-                setup.robust = robust;
-                const SceneTracer tracer(scene, setup);
-                const bool any = !IntersectionMethod<M>;
-                const Stopwatch sw;
-                const std::vector<Hit> hits = trace_all(tracer, rays, any);
-                const double ns = sw.ns() / static_cast<double>(rays.size());
-                std::size_t leaks = 0;
-                for (const Hit& h : hits) {
-                    leaks += h.valid() ? 0 : 1;
-                }
-                std::string note = leak_note(leaks, own, robust);
-                if (any) {
-                    note = "any-hit (occlusion-only method)" + (note.empty() ? "" : "; " + note);
-                }
-                rows.push_back(
-                    make_row(std::string(case_name),
-                             std::string(method) + " + " + spec + " " + robust_label(robust),
-                             "float", rays.size(), leaks, "leaks", ns, note));
             }
         }
     });
+    for (const std::string& spec : specs) {
+        for (std::size_t k = 0; k < scenes.size(); ++k) {
+            const TriangleMesh& mesh = scenes[k].meshes[0].mesh;
+            std::vector<Rayf> rays;
+            for_each_type<TriangleMethods<float>>([&]<class M>() {
+                for (Subject& sub : subjects) {
+                    if (sub.method != M::name || sub.spec != spec) {
+                        continue;
+                    }
+                    TraceSetup setup;
+                    setup.accel = spec;
+                    setup.methods = {std::string(sub.method)};
+                    setup.robust = sub.robust;
+                    const SceneTracer tracer(scenes[k], setup);
+                    if (rays.empty()) {
+                        rays = rays_for(k, tracer);
+                    }
+                    const Stopwatch sw;
+                    const std::vector<Hit> hits = trace_all(tracer, rays, sub.any);
+                    sub.ns += sw.ns();
+                    sub.rays += rays.size();
+                    tally_leaks<M>(mesh, rays, hits, sub.tally);
+                }
+            });
+        }
+    }
+    std::vector<Row> rows;
+    for (const Subject& sub : subjects) {
+        std::string note = leak_note(sub.tally, sub.robust);
+        if (sub.any) {
+            note = "any-hit (occlusion-only method)" + (note.empty() ? "" : "; " + note);
+        }
+        Row row =
+            make_row(std::string(case_name),
+                     std::string(sub.method) + " + " + sub.spec + " " + robust_label(sub.robust),
+                     "float", sub.rays, sub.tally.leaks, "leaks",
+                     sub.ns / static_cast<double>(std::max<std::size_t>(sub.rays, 1)), note);
+        row.defect = sub.robust && sub.tally.lost > 0;
+        rows.push_back(std::move(row));
+    }
     return rows;
 }
 
 std::vector<Row> run_watertight(const Options& opt, const Selection& sel) {
-    const Scene scene = mesh_scene(watertight_sphere(opt.seed));
-    return leak_rows("watertight", scene, inside_rays(scene.meshes[0].mesh, opt.rays, opt.seed),
-                     sel);
+    const std::vector<Scene> scenes{mesh_scene(watertight_sphere(opt.seed))};
+    const std::vector<Rayf> rays = inside_rays(scenes[0].meshes[0].mesh, opt.rays, opt.seed);
+    return leak_rows(
+        "watertight", scenes, [&](std::size_t, const SceneTracer&) { return rays; }, sel);
 }
 
 }  // namespace rtlab::stab
