@@ -14,20 +14,34 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace rtlab {
 
-/// Bounds of the part of triangle (a, b, c) inside box; empty when they do not overlap.
+/// Bounds of the part of triangle (a, b, c) inside box, rounded outward: they contain the exact
+/// part (empty only when the exact triangle misses the box). Float clipping moves each new
+/// vertex by a few ulps of the triangle's coordinates per plane (its position along an edge
+/// nearly parallel to a plane may move much further, but only where the edge runs within those
+/// ulps of the plane), so the triangle is clipped to the box widened by pad = 2^-17 of its largest
+/// coordinate per axis (64 ulps, over the 6 planes' few each), the result is widened by the same
+/// and then cut to the box. Without this a triangle whose exact part in a thin cell (cells of
+/// 1e-17 beside coordinates of 0.25) rounded away was never referenced there.
 inline Bounds3f clip_triangle_bounds(const Vec3f& a,
                                      const Vec3f& b,
                                      const Vec3f& c,
                                      const Bounds3f& box) {
+    Vec3f pad;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        const float mag = std::max({std::abs(a[axis]), std::abs(b[axis]), std::abs(c[axis])});
+        pad[axis] = mag * 0x1.0p-17f + 4.0f * std::numeric_limits<float>::denorm_min();
+    }
+    const Bounds3f wide{box.lo - pad, box.hi + pad};
     // A convex polygon clipped by 6 planes has at most 3 + 6 vertices.
     std::array<Vec3f, 9> poly{a, b, c}, next{};
     std::size_t n = 3;
     for (std::size_t axis = 0; axis < 3 && n > 0; ++axis) {
         for (int side = 0; side < 2 && n > 0; ++side) {
-            const float plane = side == 0 ? box.lo[axis] : box.hi[axis];
+            const float plane = side == 0 ? wide.lo[axis] : wide.hi[axis];
             const auto inside = [&](const Vec3f& p) {
                 return side == 0 ? p[axis] >= plane : p[axis] <= plane;
             };
@@ -50,11 +64,14 @@ inline Bounds3f clip_triangle_bounds(const Vec3f& a,
             n = m;
         }
     }
+    if (n == 0) {
+        return Bounds3f{};
+    }
     Bounds3f out;
     for (std::size_t i = 0; i < n; ++i) {
         out.extend(poly[i]);
     }
-    return n == 0 ? Bounds3f{} : intersection(out, box);
+    return intersection(Bounds3f{out.lo - pad, out.hi + pad}, box);
 }
 
 /// The part of a triangle inside box, for kd-tree perfect splits. A shape type gets perfect

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace rtlab::kd_detail {
 
@@ -30,9 +31,22 @@ struct HavranPoint {
 };
 
 /// Robust mode: a computed point's coordinate b lies within this of the exact ray point it stands
-/// for (t within gamma(3) relative of the exact crossing, then a multiplication and an addition).
+/// for. Its t is a computed crossing (split - org) * inv_dir, within gamma(3) relative of the exact
+/// one, or another point's t when clamped (then within that point's bound of the exact crossing:
+/// see havran_walk), and never a lowered t; the coordinate adds the rounding of a multiplication
+/// and an addition, so gamma(3) |dir t| + gamma(2) (|org| + |dir t|) <= gamma(6) (|org| + |dir t|).
+/// The absolute term covers results in the subnormal range, where each operation may err by
+/// half of denorm_min.
 inline float havran_pad(const Rayf& ray, std::uint32_t b, float t) {
-    return (std::abs(ray.org[b]) + std::abs(ray.dir[b] * t)) * gamma_bound<float>(6);
+    return (std::abs(ray.org[b]) + std::abs(ray.dir[b] * t)) * gamma_bound<float>(6) +
+           4.0f * std::numeric_limits<float>::denorm_min();
+}
+
+/// Robust mode: a t lowered below every exact distance it may stand for (gamma(3) relative, as
+/// the t-value walk widens its split distances), for the stop test only.
+inline float havran_lowered(float t) {
+    const float pad = std::abs(t) * (2.0f * gamma_bound<float>(3));
+    return std::isfinite(pad) ? t - pad : t;
 }
 
 /// Fills the point at distance t; axis `on` (< 3) lies exactly in a split plane at `split`.
@@ -48,8 +62,22 @@ inline void havran_set_point(
 /// offset, count) is called for every leaf the window meets, front to back, and returns true to
 /// stop. After a leaf, the walk goes on only while the next cell's entry distance is at most
 /// ray.tmax (shrunk by closest hits), so a hit beyond the current leaf never ends it early. Robust
-/// mode treats a coordinate within havran_pad of the split as on both sides and lowers pushed
-/// distances by 2 gamma(3), as the t-value walk does. Returns whether leaf stopped the walk.
+/// mode treats a coordinate within havran_pad of the split as on both sides and lowers the next
+/// cell's entry distance by 2 gamma(3) for the stop test, as the t-value walk does. Returns
+/// whether leaf stopped the walk.
+///
+/// Why robust mode is conservative (every leaf whose cell the exact ray meets in its window is
+/// visited): (1) the root points lie on the exact ray at t_enter <= the exact entry and t_exit >=
+/// the exact exit (clip_slabs<true>), so the computed segment covers the exact one; (2) a pushed
+/// point's t is the computed crossing, within gamma(3) of the exact one, clamped into the current
+/// points' [t_en, t_ex]: a clamp only moves it to an end of a segment that already covers the
+/// exact one, and its axis coordinate is the split, the child cell's own boundary; t is never
+/// lowered, so the bounds do not compound down the tree; (3) hence every coordinate is within
+/// havran_pad of the exact ray's point it stands for, so "both endpoints below the plane (by more
+/// than the pad)" implies the exact segment is below it (a segment lies between its endpoints);
+/// (4) the stop test compares a lowered entry with tmax, so a cell whose exact entry precedes the
+/// closest hit found is still visited. Rays with a zero or subnormal direction component never
+/// get here (they take the t-value walk), so inv_dir is finite and t never NaN.
 template <bool IsRobust, std::uint32_t DepthLimit, class S, class Leaf>
 bool havran_walk(const KdNode* nodes,
                  const Rayf& ray,
@@ -102,14 +130,12 @@ bool havran_walk(const KdNode* nodes,
             if (++ex == en) {
                 ++ex;
             }
+            // The point keeps the computed t: its coordinates, the pads and later clamps need a t
+            // within gamma(3) of the exact crossing. Lowering it here (for the stop test) made
+            // nested splits through one vertex clamp to ever lower t, until a point's coordinates
+            // fell a few ulps short of the plane the exact ray reaches there and a child was
+            // skipped.
             havran_set_point(stack[ex], ray, t, a, split);
-            if constexpr (IsRobust) {
-                // The far child's entry as the stop test sees it: lowered like the t-value walk's.
-                const float pad = std::abs(t) * (2.0f * gamma_bound<float>(3));
-                if (std::isfinite(pad)) {
-                    stack[ex].t = t - pad;
-                }
-            }
             stack[ex].node = far_child;
             stack[ex].prev = prev;
             index = near_child;
@@ -118,8 +144,16 @@ bool havran_walk(const KdNode* nodes,
         if (leaf(n.prim_offset(), n.prim_count())) {
             return true;
         }
-        // The current exit point is the next cell's entry: go on while it is not beyond tmax.
-        if (stack[ex].node == HavranPoint::none || stack[ex].t > ray.tmax) {
+        // The current exit point is the next cell's entry: go on while it is not beyond tmax
+        // (robust: while its lowered t is not, so a hit in the next cell is never cut off).
+        if (stack[ex].node == HavranPoint::none) {
+            return false;
+        }
+        if constexpr (IsRobust) {
+            if (havran_lowered(stack[ex].t) > ray.tmax) {
+                return false;
+            }
+        } else if (stack[ex].t > ray.tmax) {
             return false;
         }
         en = ex;
