@@ -14,6 +14,7 @@
 #include "trace/ray_gen.h"
 #include "trace/scene_tracer.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdlib>
 #include <filesystem>
@@ -296,7 +297,8 @@ ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt)
         nlohmann::json pv = prov;
         pv["start"] = utc_now();
         pv["seed"] = p.sweep.seed;
-        pv["threads_used"] = threads;
+        // More threads than the process may use run as many as it may (TBB caps them).
+        pv["threads_used"] = std::min(threads, tbb::info::default_concurrency());
         try {
             const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                             static_cast<std::size_t>(threads));
