@@ -7,15 +7,14 @@
 #include "base/fnv1a.h"
 #include "crosscheck/crosscheck.h"
 #include "crosscheck/row_json.h"
-#include "datasets_gen/generators.h"
 #include "render/image.h"
 #include "render/renderer.h"
-#include "scene/scene_io.h"
 #include "sweep/provenance.h"
 #include "trace/measure.h"
 #include "trace/ray_gen.h"
 #include "trace/scene_tracer.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdlib>
 #include <filesystem>
@@ -53,18 +52,6 @@ struct Workspace {
     std::string tracer_key;
     std::unique_ptr<SceneTracer> tracer;
 };
-
-Scene make_scene(const SceneSource& src) {
-    if (!src.generator.empty()) {
-        gen::GenOptions o;
-        o.size = src.size;
-        o.as_mesh = src.as_mesh;
-        o.tess = gen::parse_sphere_tess(src.tess);
-        o.seed = src.seed;
-        return gen::generate(src.generator, o);
-    }
-    return load_scene(src.path);
-}
 
 void use_scene(Workspace& w, const SweepFile& s, std::size_t index) {
     if (w.scene_index == index) {
@@ -135,6 +122,15 @@ void use_tracer(Workspace& w, const SweepFile& s, const Case& c, int threads) {
     }
 }
 
+// "family=method" of every set the tracer built, space-separated: what ran.
+std::string sets_text(const SceneTracer& tracer) {
+    std::string sets;
+    for (const std::string& x : tracer.set_methods()) {
+        sets += fmt::format("{}{}", sets.empty() ? "" : " ", x);
+    }
+    return sets;
+}
+
 // Measures trace case c into j (throws on failure; the caller records the error).
 void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, nlohmann::json& j) {
     if (!w.scene_error.empty()) {
@@ -153,11 +149,7 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
     opt.warmup = s.warmup;
     opt.stats = s.stats;
     const TraceMeasurement m = measure_trace(*w.tracer, rays_it->second, opt);
-    std::string sets;
-    for (const std::string& x : w.tracer->set_methods()) {
-        sets += fmt::format("{}{}", sets.empty() ? "" : " ", x);
-    }
-    j["sets"] = sets;
+    j["sets"] = sets_text(*w.tracer);
     j["primitives"] = w.tracer->primitive_count();
     j["rays"] = m.rays;
     j["hits"] = m.hits;
@@ -216,6 +208,7 @@ void measure_render(Workspace& w, const Planned& p, const Case& c, int threads, 
     write_image(res.image, p.dir / image, rs.aov == Aov::color);
     j["image"] = image;
     const RenderStats& st = res.stats;
+    j["sets"] = sets_text(*w.tracer);
     j["primitives"] = w.tracer->primitive_count();
     j["rays"] = st.total();
     j["eye_rays"] = st.eye;
@@ -304,7 +297,8 @@ ShardOutcome run_shard(const Planned& p, std::size_t k, const ShardOptions& opt)
         nlohmann::json pv = prov;
         pv["start"] = utc_now();
         pv["seed"] = p.sweep.seed;
-        pv["threads_used"] = threads;
+        // More threads than the process may use run as many as it may (TBB caps them).
+        pv["threads_used"] = std::min(threads, tbb::info::default_concurrency());
         try {
             const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                             static_cast<std::size_t>(threads));

@@ -3,6 +3,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "sweep/case_check.h"
 
 #include <fmt/format.h>
 #include <fstream>
@@ -59,6 +60,8 @@ Planned plan_into(const fs::path& file, const fs::path& dir, std::size_t shards,
         return make_planned(dir, std::move(s), old_shards);
     }
     Planned p = make_planned(dir, std::move(s), shards);
+    // A folder that holds the sweep was checked when it was planned (shard runs reopen it).
+    check_cases(p.sweep, p.cases, file.string());
     if (!write) {
         return p;
     }

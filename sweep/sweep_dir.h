@@ -24,9 +24,9 @@ struct Planned {
 };
 
 /// Loads FILE, validates and expands it, and binds it to DIR: a new DIR gets sweep.json and
-/// plan.json (unless `write` is false: dry runs); an existing one must hold the same sweep (and,
-/// when `shards` is not 0, the same shard count), else rtlab::Error. Nothing is written before
-/// validation passed.
+/// plan.json (unless `write` is false: dry runs) once every case passed check_cases (each scene
+/// made once); an existing one must hold the same sweep (and, when `shards` is not 0, the same
+/// shard count), else rtlab::Error. Nothing is written before validation passed.
 Planned plan_into(const std::filesystem::path& file,
                   const std::filesystem::path& dir,
                   std::size_t shards,

@@ -4,8 +4,9 @@
 #include "accel/any_accel.h"
 #include "base/error.h"
 #include "datasets_gen/generators.h"
+#include "scene/scene_io.h"
 #include "sweep/json_read.h"
-#include "trace/method_families.h"
+#include "trace/method_check.h"
 #include "trace/ray_gen.h"
 
 #include <fmt/format.h>
@@ -111,17 +112,14 @@ std::string check_method_list(const ojson& m, const std::string& where) {
     }
     std::stringstream ss(text);
     std::string name;
+    std::vector<std::string> names;
     while (std::getline(ss, name, ',')) {
-        bool known = false;
-        for (const MethodFamily& f : method_families()) {
-            for (std::string_view x : f.methods) {
-                known = known || x == name;
-            }
-        }
-        if (!known) {
+        if (method_family(name).empty()) {
             fail(where, fmt::format("unknown method '{}' (see rtlab list)", name));
         }
+        names.push_back(name);
     }
+    check_one_method_per_family(names, fmt::format("{}: '{}'", where, text));
     return text;
 }
 
@@ -294,6 +292,18 @@ void parse_sweep_options(const ojson& j, const std::string& where, SweepFile& s)
 }
 
 }  // namespace
+
+Scene make_scene(const SceneSource& src) {
+    if (!src.generator.empty()) {
+        gen::GenOptions o;
+        o.size = src.size;
+        o.as_mesh = src.as_mesh;
+        o.tess = gen::parse_sphere_tess(src.tess);
+        o.seed = src.seed;
+        return gen::generate(src.generator, o);
+    }
+    return load_scene(src.path);
+}
 
 SweepFile load_sweep_file(const std::filesystem::path& file) {
     const std::string where = file.string();

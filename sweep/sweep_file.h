@@ -5,6 +5,8 @@
 // files, spec names and keys through the registry's ParamSpecs, method names, ray kinds), so a
 // typo fails before any case runs.
 
+#include "scene/scene.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -66,6 +68,9 @@ struct SweepFile {
     /// resolved against: what a sweep folder keeps as sweep.json, and how two files compare.
     nlohmann::ordered_json normalized;
 };
+
+/// Generates or loads the scene `src` names (rtlab::Error when it cannot).
+Scene make_scene(const SceneSource& src);
 
 /// Loads and validates a sweep file; throws rtlab::Error with one line naming the file and the
 /// place ("sweep.json: structures[1].max_leaf: ...").

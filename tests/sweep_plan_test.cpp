@@ -1,9 +1,11 @@
 // Sweep files: parameter lists expand through the registry's specs, case ids are stable and
-// unique, shards hold every case exactly once and keep scenes together where possible.
+// unique, shards hold every case exactly once and keep scenes together where possible, and a
+// case whose methods its scene would not use is refused when planning.
 #include "accel/spec.h"
 #include "base/error.h"
 #include "support/temp_dir.h"
 #include "sweep/plan.h"
+#include "sweep/sweep_dir.h"
 
 #include <catch2/catch.hpp>
 
@@ -156,4 +158,42 @@ TEST_CASE("sweep renders and cross-checks expand into their own cases", "[sweep]
                       Catch::Contains("crosscheck[0].prim"));
     CHECK_THROWS_WITH(load_text(bad("\"stable\"]", "\"stabel\"]")),
                       Catch::Contains("crosscheck[0].methods"));
+}
+
+TEST_CASE("sweep plans refuse a case naming a method its scene would not use", "[sweep]") {
+    // `rtlab trace --method watertight` refuses a scene without triangles; a sweep case must not
+    // quietly run the sphere and polygon defaults instead and be recorded as done.
+    const test::TempDir dir("rtlab_sweep_plan_test_");
+    const auto plan = [&](const std::string& methods) {
+        test::write_text(dir.path / "sweep.json", R"({
+            "scenes": [{"name": "flake1-mesh", "generator": "flake", "size": 1, "as": "mesh",
+                        "tess": "uv:8x4"},
+                       {"name": "flake1-spheres", "generator": "flake", "size": 1}],
+            "structures": ["bvh:binned", "kdtree:sah"],
+            "methods": )" + methods + R"(,
+            "rays": {"kinds": ["primary", "shadow"], "count": 10}
+        })");
+        return sweep::plan_into(dir.path / "sweep.json", "", 0, false);
+    };
+    const std::string file = (dir.path / "sweep.json").string();
+    CHECK(plan(R"(["default"])").cases.size() == 2 * 2 * 1 * 2);
+    // None of the list used: trace's error, as a one-line plan error naming the case's places.
+    CHECK_THROWS_WITH(plan(R"(["default", "watertight"])"),
+                      file +
+                          ": scenes[1] x methods[1]: method 'watertight' matches no primitive "
+                          "of scene 'flake1-spheres' (sphere, polygon)");
+    // Part of the list unused (trace warns): refused too, or two cases would measure the same
+    // sets under different method lists.
+    CHECK_THROWS_WITH(plan(R"(["watertight,stable"])"),
+                      file +
+                          ": scenes[0] x methods[0]: method 'stable' matches no primitive of "
+                          "scene 'flake1-mesh' (triangle)");
+    CHECK_THROWS_WITH(plan(R"(["geometric,winding_number"])"),
+                      file +
+                          ": scenes[0] x methods[0]: methods 'geometric', 'winding_number' "
+                          "match no primitive of scene 'flake1-mesh' (triangle)");
+    // Two methods of one family (the tracer would ignore the second): refused when loading.
+    CHECK_THROWS_WITH(
+        plan(R"(["watertight,badouel"])"),
+        Catch::Contains("methods[0]") && Catch::Contains("two methods of the triangle family"));
 }

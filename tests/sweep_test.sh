@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # rtlab sweep run end to end on tests/sweeps/small.json (2 scenes x 3 specs x 2 methods x 2 ray
 # kinds): the run completes with the deliberately failing cases (segura_feito closest hit on
-# triangles) recorded as failed and the rest done; two runs' merged tables agree case for case
+# triangles) recorded as failed and the rest done, each row naming the methods that ran; two runs' merged tables agree case for case
 # (all but timings and provenance); a run interrupted with SIGINT leaves only complete shard files
 # and a second run finishes it without redoing finished cases. Run by CTest with RTLAB set.
 set -uo pipefail
@@ -12,27 +12,39 @@ trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 small=$here/sweeps/small.json
 
-# A full run: exit 1 (some cases failed), 27 done and 3 failed.
+# A full run: exit 1 (some cases failed), 24 done and 6 failed.
 "$RTLAB" sweep run "$small" -o "$tmp/a" 2>"$tmp/a.err"
 rc=$?
 [[ $rc -eq 1 ]] || { cat "$tmp/a.err"; fail "sweep run exited $rc, expected 1 (failed cases)"; }
 "$RTLAB" sweep status "$tmp/a" >"$tmp/a.status" || fail "sweep status"
-grep -q "30 cases: 27 done, 3 failed, 0 missing" "$tmp/a.status" || { cat "$tmp/a.status"; fail "status"; }
+grep -q "30 cases: 24 done, 6 failed, 0 missing" "$tmp/a.status" || { cat "$tmp/a.status"; fail "status"; }
 "$RTLAB" sweep merge "$tmp/a" -o "$tmp/a/merged" >/dev/null || fail "sweep merge"
 head -n 1 "$tmp/a/merged.csv" | grep -q "p_max_leaf" || fail "merged.csv has no p_max_leaf column"
 [[ $(wc -l <"$tmp/a/merged.csv") -eq 31 ]] || fail "merged.csv is not 30 rows and a header"
+# Every row says what ran: the listed method in its family's set, the defaults in the others.
+python3 - "$tmp/a/merged.json" <<'PY' || fail "a row's sets do not match its methods"
+import json, sys
+for c in json.load(open(sys.argv[1]))["cases"]:
+    if c["type"] == "crosscheck" or c["status"] != "done":
+        continue
+    sets = c["sets"].split()
+    if c["methods"] == "segura_feito":
+        assert "triangle=segura_feito" in sets, c
+    if c["scene"] == "terrain3":
+        assert sorted(s.split("=")[0] for s in sets) == ["sphere", "triangle"], c
+PY
 
 # The report: a table per scene and the max_leaf line plot.
 if python3 -c "import matplotlib" 2>/dev/null; then
     python3 "$here/../bench/report.py" --sweep "$tmp/a/merged.json" --out "$tmp/a/report.md" \
         --plots "$tmp/a/plots" 2>/dev/null || fail "bench/report.py --sweep"
     [[ -s $tmp/a/plots/sweep-bvh_binned-max_leaf.png ]] || fail "no max_leaf plot"
-    grep -q "^### flake2" "$tmp/a/report.md" || fail "no flake2 table in the report"
+    grep -q "^### terrain3" "$tmp/a/report.md" || fail "no terrain3 table in the report"
 fi
 
 # Re-running a finished sweep measures nothing again.
 "$RTLAB" sweep run "$small" -o "$tmp/a" --jobs 2 2>"$tmp/a2.err"
-grep -q "27 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
+grep -q "24 already done" "$tmp/a2.err" || { cat "$tmp/a2.err"; fail "re-run did not skip the done cases"; }
 
 # A shard log that is a symbolic link (planted in the folder) is never written through: the run
 # stops with a one-line error naming the log, and the link's target is unchanged.
@@ -47,7 +59,7 @@ grep -q "shard-0000.log (Too many levels of symbolic links)" "$tmp/linklog.err" 
 # A second folder, two shards at a time and 4 shards: the same table but timings.
 "$RTLAB" sweep run "$small" -o "$tmp/b" --jobs 2 --shards 4 2>/dev/null
 "$RTLAB" sweep merge "$tmp/b" -o "$tmp/b/merged" >/dev/null || fail "merge b"
-python3 "$here/sweep_compare.py" "$tmp/a/merged.json" "$tmp/b/merged.json" --failed 3 --total 30 ||
+python3 "$here/sweep_compare.py" "$tmp/a/merged.json" "$tmp/b/merged.json" --failed 6 --total 30 ||
     fail "runs a and b disagree"
 
 # Interrupt: more rays so the run is still going when SIGINT arrives.
@@ -86,7 +98,7 @@ python3 - "$tmp/c/merged.json" <<'PY' || fail "resumed sweep incomplete"
 import json, sys
 t = json.load(open(sys.argv[1]))
 bad = sum(1 for c in t["cases"] if c["status"] != "done")
-assert not t["missing"] and len(t["cases"]) == 30 and bad == 3, (len(t["cases"]), bad, t["missing"])
+assert not t["missing"] and len(t["cases"]) == 30 and bad == 6, (len(t["cases"]), bad, t["missing"])
 PY
 ls "$tmp"/c/results | grep -v '\.jsonl$' | grep -qv '\.tmp-rtlab$' && fail "stray files in results/"
 echo "sweep: local runs, resume and interrupt OK ($(wc -l <"$tmp/c.before") cases kept over the interrupt)"

@@ -16,18 +16,26 @@ bad() {  # bad NAME SED-EXPRESSION: a broken copy of small.json must fail plan, 
     [[ -e $tmp/$1.dir ]] && { echo "FAIL (sweep $1): $tmp/$1.dir was created"; fail=1; }
     grep -q "$tmp/$1.json: " "$tmp/err" || { echo "FAIL (sweep $1): error does not name the file: $(cat "$tmp/err")"; fail=1; }
 }
-bad unknown-generator 's/"generator": "flake", "size": 2/"generator": "frobnicate"/'
+bad unknown-generator 's/"generator": "terrain"/"generator": "frobnicate"/'
 bad unknown-key 's/"max_leaf"/"max_leafs"/'
 bad out-of-range 's/\[1, 4\]/[1, 0]/'
 bad unknown-method 's/"segura_feito"/"segura"/'
 bad unknown-kind 's/"shadow"/"umbra"/'
 bad unknown-field 's/"repeat"/"repeats"/'
 bad not-json 's/"name": "small",/"name": "small"/'
-bad render-scene 's/"scenes": \["flake2"\]/"scenes": ["flake9"]/'
+bad render-scene 's/"scenes": \["terrain3"\]/"scenes": ["terrain9"]/'
 bad render-aov 's/"color", "depth"\]/"color", "albedo"]/'
 bad render-key 's/"width": 32/"widht": 32/'
 bad crosscheck-prim 's/"prim": "sphere"/"prim": "torus"/'
 bad crosscheck-method 's/"geometric", "stable"\]/"geometric", "stabel"]/'
+# A case whose methods its scene would not use is refused as `rtlab trace --method` is: a sphere
+# method on the triangle-only scene (trace: nothing used, an error), two methods of one family.
+bad method-unused 's/"segura_feito"/"geometric"/'
+grep -qxF "rtlab: $tmp/method-unused.json: scenes[0] x methods[1]: method 'geometric' matches no primitive of scene 'flake1-mesh' (triangle)" "$tmp/err" ||
+    { echo "FAIL (sweep method-unused): $(cat "$tmp/err")"; fail=1; }
+bad method-twice 's/"segura_feito"/"segura_feito,watertight"/'
+grep -q "methods\[1\]: 'segura_feito,watertight' names two methods of the triangle family" "$tmp/err" ||
+    { echo "FAIL (sweep method-twice): $(cat "$tmp/err")"; fail=1; }
 expect_error "sweep status of no sweep" sweep status "$tmp"
 expect_error "sweep merge of no sweep" sweep merge "$tmp"
 expect_error "sweep submit without --slurm" sweep submit "$sweeps/small.json" --dry-run
