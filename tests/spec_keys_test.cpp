@@ -19,20 +19,29 @@
 namespace rtlab {
 namespace {
 
-/// 1000 seeded random triangles, built with exact clipping (kd-tree perfect splits) and exact
-/// diagonal extents (`bounds=dop14`), so every key that can read the primitives does.
-const test::Soup& soup() {
-    static const test::Soup s = test::random_soup(test::SoupKind::triangles, 7, 1000);
-    return s;
+/// What every case builds from: 1000 seeded random triangles, with exact clipping (kd-tree perfect
+/// splits) and exact diagonal extents (`bounds=dop14`), so every key that can read the primitives
+/// does; and 1000 random boxes, whose duplicates and point boxes reach the corners of a cost
+/// model (a kd-tree node of two primitives on one side of its median) the triangles may not.
+std::vector<BuildInput> inputs() {
+    static const test::Soup tris = test::random_soup(test::SoupKind::triangles, 7, 1000);
+    static const test::Soup boxes = test::random_soup(test::SoupKind::boxes, 7, 1000);
+    BuildInput t = tris.input();
+    t.clip = [](std::uint32_t id, const Bounds3f& box) {
+        const auto& p = tris.triangles[id];
+        return clip_shape_bounds(Trianglef{p.p0, p.p1, p.p2}, box);
+    };
+    return {t, boxes.input()};
 }
 
-BuildInput soup_input() {
-    BuildInput in = soup().input();
-    in.clip = [](std::uint32_t id, const Bounds3f& box) {
-        const auto& t = soup().triangles[id];
-        return clip_shape_bounds(Trianglef{t.p0, t.p1, t.p2}, box);
-    };
-    return in;
+/// Builds spec (text or parsed) from every input.
+template <class Spec>
+std::vector<AnyAccel> build_all(const Spec& spec, const std::vector<BuildInput>& in) {
+    std::vector<AnyAccel> out;
+    for (const BuildInput& i : in) {
+        out.push_back(build_accel(spec, i));
+    }
+    return out;
 }
 
 /// The structure without the copies of its build settings kept only for reports (a BVH's
@@ -53,18 +62,30 @@ AnyAccel without_settings(AnyAccel a) {
     return a;
 }
 
-/// The value a test moves parameter p to from v: the minimum, else the next integer (or the
-/// maximum), the maximum for a real, the next choice for a choice.
-double moved(const ParamSpec& p, double v) {
-    switch (p.kind) {
-    case ParamKind::integer:
-        return p.min != v ? p.min : (p.min + 1 <= p.max ? p.min + 1 : p.max);
-    case ParamKind::real:
-        return p.min != v ? p.min : p.max;
-    case ParamKind::choice:
-        return v + 1 < static_cast<double>(p.choices.size()) ? v + 1 : 0;
+/// The values a test moves parameter p to from its default v: the minimum (when that is the
+/// default, the next integer, or for a real the maximum), then the maximum; every other choice of
+/// a choice parameter. One value may leave a particular tree alone (ci=0.001 on the wide layouts:
+/// with ct=4 and blocks of 4 every range of up to max_leaf becomes a leaf for any ci below 2), so
+/// a key takes effect when any of them changes the structure.
+std::vector<double> moves(const ParamSpec& p, double v) {
+    std::vector<double> out;
+    if (p.kind == ParamKind::choice) {
+        for (std::size_t c = 0; c < p.choices.size(); ++c) {
+            if (static_cast<double>(c) != v) {
+                out.push_back(static_cast<double>(c));
+            }
+        }
+        return out;
     }
-    return v;
+    if (p.min != v) {
+        out.push_back(p.min);
+    } else if (p.kind == ParamKind::integer && p.min + 1 < p.max) {
+        out.push_back(p.min + 1);
+    }
+    if (p.max != v) {
+        out.push_back(p.max);
+    }
+    return out;
 }
 
 /// The spec text `base` with ",key=value" appended.
@@ -128,42 +149,64 @@ std::vector<std::string> canonical_keys(const std::string& text) {
 }
 
 TEST_CASE("every key a spec accepts takes effect, every key it refuses has none", "[accel][spec]") {
-    const BuildInput in = soup_input();
+    const std::vector<BuildInput> in = inputs();
     for (const AccelEntry& e : accel_registry()) {
         for (const std::string& context : contexts(e)) {
             CAPTURE(context);
             const AccelSpec base_spec = parse_accel_spec(context);
-            const AnyAccel base = build_accel(base_spec, in);
-            const AnyAccel base_plain = without_settings(base);
+            const std::vector<AnyAccel> base = build_all(base_spec, in);
+            std::vector<AnyAccel> base_plain;
+            for (const AnyAccel& a : base) {
+                base_plain.push_back(without_settings(a));
+            }
             std::vector<std::string> accepted;
             for (std::size_t i = 0; i < e.params.size(); ++i) {
                 const ParamSpec& p = e.params[i];
+                CAPTURE(p.key);
                 if (p.key == context_key(context)) {
                     accepted.emplace_back(p.key);
                     continue;
                 }
-                const double v = moved(p, p.default_value);
-                const std::string text = with_key(context, p, v);
-                CAPTURE(text);
-                const std::string why = refusal(text);
-                if (why.empty()) {
-                    accepted.emplace_back(p.key);
-                    const AnyAccel a = build_accel(text, in);
-                    if (is_build_only(p)) {
-                        CHECK(a == base);
-                    } else {
-                        CHECK_FALSE(without_settings(a) == base_plain);
+                std::size_t refused = 0;
+                bool changed = false;
+                std::vector<double> values = moves(p, p.default_value);
+                if (is_build_only(p)) {
+                    values.resize(1);  // threads=1 against all; not 256 threads on a small machine
+                }
+                for (const double v : values) {
+                    const std::string text = with_key(context, p, v);
+                    CAPTURE(text);
+                    const std::string why = refusal(text);
+                    if (why.empty()) {
+                        const std::vector<AnyAccel> a = build_all(text, in);
+                        if (is_build_only(p)) {
+                            CHECK(a == base);
+                        }
+                        for (std::size_t k = 0; k < in.size(); ++k) {
+                            changed = changed || !(without_settings(a[k]) == base_plain[k]);
+                        }
+                        const std::string canonical = parse_accel_spec(text).canonical();
+                        CHECK(parse_accel_spec(canonical).canonical() == canonical);
+                        continue;
                     }
-                    const std::string canonical = parse_accel_spec(text).canonical();
-                    CHECK(parse_accel_spec(canonical).canonical() == canonical);
-                } else {
+                    ++refused;
                     CHECK_THAT(why, Catch::Contains(text) && Catch::Contains("has no effect") &&
                                         Catch::Contains("'" + std::string(p.key) + "'"));
                     CHECK(why.find('\n') == std::string::npos);
-                    // Refused rightly: forced past the parser, the value builds the same tree.
+                    // Refused rightly: forced past the parser, the value builds the same trees.
                     AccelSpec forced = base_spec;
                     forced.values[i] = v;
-                    CHECK(without_settings(build_accel(forced, in)) == base_plain);
+                    const std::vector<AnyAccel> f = build_all(forced, in);
+                    for (std::size_t k = 0; k < in.size(); ++k) {
+                        CHECK(without_settings(f[k]) == base_plain[k]);
+                    }
+                }
+                // A key is accepted with every value or with none, and an accepted one that is
+                // not build-only changes some structure.
+                CHECK((refused == 0 || refused == values.size()));
+                if (refused == 0) {
+                    accepted.emplace_back(p.key);
+                    CHECK(changed != is_build_only(p));
                 }
             }
             // The canonical spec names exactly the keys that take effect here, and reads back.
