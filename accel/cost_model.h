@@ -33,7 +33,7 @@ struct CostParams {
     double ci = 1.0;  ///< cost of one primitive test
 };
 
-/// ct and ci of a spec: the row's `ct`/`ci` parameters when it declares them, else the defaults.
+/// ct and ci of a spec: the row's `ct`/`ci` parameters where they take effect, else the defaults.
 CostParams cost_params(const AccelSpec& spec);
 
 /// Expected counts per ray meeting the root box.

@@ -62,12 +62,12 @@ const ParamSpec sah_block = integer_param(
     "the SAH counts a range's primitives in started blocks of this many (Embree's sahBlockSize)");
 const ParamSpec morton_bits =
     integer_param("morton_bits", bvh_default.morton_bits, 1, 10, "Morton code bits per axis");
-const ParamSpec threads =
+const ParamSpec threads = build_only(
     integer_param("threads",
                   0,
                   0,
                   256,
-                  "TBB threads of the build (0: all allowed); the tree is the same for any");
+                  "TBB threads of the build (0: all allowed); the tree is the same for any"));
 const ParamSpec from = choice_param("from",
                                     0,
                                     {"pbinned", "binned", "sweep", "lbvh", "median", "sbvh"},
@@ -224,12 +224,14 @@ const ParamSpec leaves = choice_param("leaves",
 // session 13 measured bvh8 on the tessellated SF 4 (1.65M triangles, 20% more slots) shadow
 // 1.06x, diffuse 1.02-1.07x, primary 0.99-1.01x; analytic SF 4 primary 1.015x, diffuse 1.04x;
 // bvh:pair 1.00-1.035x (docs/results.md).
-const ParamSpec leaf_align = integer_param("leaf_align",
-                                           4,
-                                           1,
-                                           64,
-                                           "with leaves=soa, every leaf starts at a multiple of "
-                                           "this many slots (padding between leaves); 1 packs");
+const ParamSpec leaf_align = only_with(integer_param("leaf_align",
+                                                     4,
+                                                     1,
+                                                     64,
+                                                     "every leaf starts at a multiple of this many "
+                                                     "slots (padding between leaves); 1 packs"),
+                                       "leaves",
+                                       {"soa"});
 
 // Children larger box first: any-hit traversal visits them in slot order (accel/bvh/bvh.h
 // ChildOrder; session 25: bvh:pair 1.05-1.07x on the SF 4 mesh's shadow rays, 2% fewer nodes per
@@ -328,12 +330,21 @@ ParamSpec with_max(ParamSpec p, double value) {
 // and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
 const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
 const ParamSpec sah_ct = with_default(bvh_ct, 4);
+// A layout row's source-tree parameters take effect only with the `from` builders that read them,
+// the standalone rows' lists: bins with the binned builders, ct, ci and block with every SAH
+// builder, morton_bits with LBVH (max_leaf with all).
+const std::vector<std::string_view> binned_builders{"pbinned", "binned", "sbvh"};
+const std::vector<std::string_view> sah_builders{"pbinned", "binned", "sweep", "sbvh"};
+const ParamSpec from_bins = only_with(bins, "from", binned_builders);
+const ParamSpec from_ct = only_with(sah_ct, "from", sah_builders);
+const ParamSpec from_ci = only_with(bvh_ci, "from", sah_builders);
+const ParamSpec from_morton_bits = only_with(morton_bits, "from", {"lbvh"});
 // The layouts with SoA leaves (bvh4, bvh8, bvh16, bvh8q, bvh:pair) build source trees that count
 // primitives in blocks of 4, the leaves' group (one 4-lane test, half of an 8-lane one): bvh8
 // traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust
 // 0.99-1.01x; analytic SF 4 1.00-1.02x); bvh:pair traced within noise (0.98-1.03x) and built
 // its source tree in 25-35% less time (docs/results.md, issue 12, session 28).
-const ParamSpec soa_block = with_default(sah_block, 4);
+const ParamSpec soa_block = only_with(with_default(sah_block, 4), "from", sah_builders);
 // A quantised node stores leaf counts in 16 bits.
 const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
 // The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
@@ -342,8 +353,8 @@ const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
 // tessellated SF 4 and 1.01-1.03x on the analytic SF 4/5, within 1% over the issue 12 bench's
 // 16,384, and build 10% faster (fewer nodes; session 14, docs/results.md).
 const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
-const ParamSpec pair_bins = with_default(bins, 32);
-const ParamSpec pair_ct = with_default(bvh_ct, 16);
+const ParamSpec pair_bins = with_default(from_bins, 32);
+const ParamSpec pair_ct = with_default(from_ct, 16);
 
 AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
     return BruteForce::build(in);
@@ -367,8 +378,8 @@ const AccelEntry registry_rows[] = {
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
      "of the split first",
-     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, bvh_ci, soa_block,
-      morton_bits, threads},
+     {from, leaves, leaf_align, child_order, pair_max_leaf, pair_bins, pair_ct, from_ci, soa_block,
+      from_morton_bits, threads},
      &layout_row<&pair_row>},
     {"bvh:sweep",
      "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
@@ -385,25 +396,25 @@ const AccelEntry registry_rows[] = {
      &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4",
      "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
-      soa_block, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
+      from_ci, soa_block, from_morton_bits, threads},
      &layout_row<&collapse_row<4>>},
     {"bvh8",
      "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
-      soa_block, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
+      from_ci, soa_block, from_morton_bits, threads},
      &layout_row<&collapse_row<8>>},
     {"bvh16",
      "16-wide BVH collapsed from a binary build by surface area, one 16-lane node test (AVX-512; "
      "two 8-lane ones on AVX2)",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, bins, sah_ct, bvh_ci,
-      soa_block, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
+      from_ci, soa_block, from_morton_bits, threads},
      &layout_row<&collapse_row<16>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
-     {from, leaves, leaf_align, child_order, collapse, qwide_max_leaf, bins, sah_ct, bvh_ci,
-      soa_block, morton_bits, threads},
+     {from, leaves, leaf_align, child_order, collapse, qwide_max_leaf, from_bins, from_ct, from_ci,
+      soa_block, from_morton_bits, threads},
      &layout_row<&quantize_row>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",

@@ -5,6 +5,7 @@
 
 #include "accel/any_accel.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -46,6 +47,29 @@ std::string known_names() {
     throw std::invalid_argument(fmt::format("--accel '{}': {}", spec, what));
 }
 
+/// The index of parameter `key` in row e; throws std::logic_error when the row has none.
+std::size_t param_index(const AccelEntry& e, std::string_view key) {
+    for (std::size_t i = 0; i < e.params.size(); ++i) {
+        if (e.params[i].key == key) {
+            return i;
+        }
+    }
+    throw std::logic_error(fmt::format("{} has no parameter {}", e.name, key));
+}
+
+/// Why parameter i of s has no effect (s.applies(i) is false), in one line.
+std::string no_effect_reason(const AccelSpec& s, std::size_t i) {
+    const ParamSpec& p = s.entry->params[i];
+    const std::size_t j = param_index(*s.entry, p.needs);
+    const ParamSpec& q = s.entry->params[j];
+    if (!s.applies(j)) {
+        return fmt::format("'{}' has no effect: it applies with {}, and '{}' has none here", p.key,
+                           p.needs_text(), q.key);
+    }
+    return fmt::format("'{}' has no effect with {}={} (it applies with {})", p.key, q.key,
+                       q.format(s.values[j]), p.needs_text());
+}
+
 }  // namespace
 
 ParamSpec integer_param(
@@ -75,6 +99,17 @@ ParamSpec choice_param(std::string_view key,
                                 static_cast<double>(choices.size()) - 1, help);
     p.kind = ParamKind::choice;
     p.choices = std::move(choices);
+    return p;
+}
+
+ParamSpec only_with(ParamSpec p, std::string_view key, std::vector<std::string_view> values) {
+    p.needs = key;
+    p.needs_values = std::move(values);
+    return p;
+}
+
+ParamSpec build_only(ParamSpec p) {
+    p.build_only = true;
     return p;
 }
 
@@ -132,27 +167,46 @@ std::string ParamSpec::range_text() const {
     return fmt::format("[{}, {}]", format(min), format(max));
 }
 
+std::string ParamSpec::needs_text() const {
+    if (needs.empty()) {
+        return {};
+    }
+    std::string out;
+    for (std::string_view v : needs_values) {
+        out += fmt::format("{}{}", out.empty() ? "" : "|", v);
+    }
+    return fmt::format("{}={}", needs, out);
+}
+
 std::string AccelSpec::canonical() const {
     std::string out(entry->name);
     for (std::size_t i = 0; i < entry->params.size(); ++i) {
-        out += fmt::format(",{}={}", entry->params[i].key, entry->params[i].format(values[i]));
+        if (applies(i)) {
+            out += fmt::format(",{}={}", entry->params[i].key, entry->params[i].format(values[i]));
+        }
     }
     return out;
 }
 
-double AccelSpec::value(std::string_view key) const {
-    for (std::size_t i = 0; i < entry->params.size(); ++i) {
-        if (entry->params[i].key == key) {
-            return values[i];
-        }
+bool AccelSpec::applies(std::size_t i) const {
+    const ParamSpec& p = entry->params.at(i);
+    if (p.needs.empty()) {
+        return true;
     }
-    throw std::logic_error(fmt::format("{} has no parameter {}", entry->name, key));
+    const std::size_t j = param_index(*entry, p.needs);
+    const std::string_view v = entry->params[j].choices.at(static_cast<std::size_t>(values[j]));
+    return applies(j) &&
+           std::find(p.needs_values.begin(), p.needs_values.end(), v) != p.needs_values.end();
+}
+
+double AccelSpec::value(std::string_view key) const {
+    return values[param_index(*entry, key)];
 }
 
 double AccelSpec::value_or(std::string_view key, double fallback) const {
     for (std::size_t i = 0; i < entry->params.size(); ++i) {
         if (entry->params[i].key == key) {
-            return values[i];
+            return applies(i) ? values[i] : fallback;
         }
     }
     return fallback;
@@ -196,6 +250,12 @@ AccelSpec parse_accel_spec(std::string_view text) {
         }
         given[i] = true;
         spec.values[i] = e->params[i].parse(text, item.substr(eq + 1));
+    }
+    // Only now are the settings a key depends on known, wherever they stand in the text.
+    for (std::size_t i = 0; i < e->params.size(); ++i) {
+        if (given[i] && !spec.applies(i)) {
+            fail(text, no_effect_reason(spec, i));
+        }
     }
     return spec;
 }

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace rtlab::app {
 
@@ -42,6 +43,12 @@ nlohmann::json list_json() {
             q["default"] = p.format(p.default_value);
             q["range"] = p.range_text();
             q["help"] = p.help;
+            // Where the key takes effect: always (null), or with these values of another key.
+            q["needs"] = nullptr;
+            if (!p.needs.empty()) {
+                q["needs"] = {{"key", p.needs}, {"values", p.needs_values}};
+            }
+            q["build_only"] = p.build_only;
             row["params"].push_back(q);
         }
         j["structures"].push_back(row);
@@ -58,9 +65,16 @@ void list_text() {
     for (const AccelEntry& e : accel_registry()) {
         std::cout << fmt::format("  {:<16} {}\n", e.name, e.description);
         for (const ParamSpec& p : e.params) {
+            std::string help(p.help);
+            if (!p.needs.empty()) {
+                help += fmt::format(" [only with {}]", p.needs_text());
+            }
+            if (p.build_only) {
+                help += " [build only: the same structure for any value]";
+            }
             std::cout << fmt::format("    {:<12} {:<8} default {:<6} {:<22} {}\n", p.key,
                                      kind_name(p.kind), p.format(p.default_value), p.range_text(),
-                                     p.help);
+                                     help);
         }
     }
     std::cout << "methods (--method), default first:\n";

@@ -71,6 +71,9 @@ nlohmann::json params_of(const std::string& spec) {
     nlohmann::json p = nlohmann::json::object();
     for (std::size_t i = 0; i < a.entry->params.size(); ++i) {
         const ParamSpec& ps = a.entry->params[i];
+        if (!a.applies(i)) {
+            continue;  // as the canonical spec: only the keys that take effect
+        }
         if (ps.kind == ParamKind::choice) {
             p[std::string(ps.key)] = ps.format(a.values[i]);
         } else if (ps.kind == ParamKind::integer) {

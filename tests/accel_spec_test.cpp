@@ -1,5 +1,6 @@
-// Structure specs: parsing, canonical form, one-line errors, and parameters that reach the
-// builders (different max_leaf, different trees, both agreeing with brute force).
+// Structure specs: parsing, canonical form, the parameters' dependencies, one-line errors, and
+// parameters that reach the builders (different max_leaf, different trees, both agreeing with
+// brute force).
 
 #include "accel/any_accel.h"
 #include "support/accel_checks.h"
@@ -7,12 +8,16 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace rtlab {
 namespace {
 
-TEST_CASE("a spec names every parameter in canonical order, defaults included", "[accel][spec]") {
+TEST_CASE("a spec names every parameter that takes effect in canonical order, defaults included",
+          "[accel][spec]") {
     CHECK(parse_accel_spec("bvh:binned").canonical() ==
           "bvh:binned,max_leaf=8,bins=16,ct=4,ci=1,block=1,threads=0");
     CHECK(parse_accel_spec("bvh:binned,bins=32,max_leaf=4").canonical() ==
@@ -26,6 +31,45 @@ TEST_CASE("a spec names every parameter in canonical order, defaults included", 
     // Reals are stored as floats and printed as the shortest text that reads back the same.
     CHECK(parse_accel_spec("bvh:sweep,ct=0.1").canonical() ==
           "bvh:sweep,max_leaf=8,ct=0.1,ci=1,block=1,threads=0");
+    // A layout row names its source builder's keys only: no morton_bits with from=pbinned, no SAH
+    // keys with from=lbvh, no leaf_align with leaves=ids.
+    CHECK(parse_accel_spec("bvh8").canonical() ==
+          "bvh8,from=pbinned,leaves=soa,leaf_align=4,order=area,collapse=sah,bounds=aabb,"
+          "max_leaf=8,bins=16,ct=4,ci=1,block=4,threads=0");
+    CHECK(parse_accel_spec("bvh8,from=lbvh,leaves=ids").canonical() ==
+          "bvh8,from=lbvh,leaves=ids,order=area,collapse=sah,bounds=aabb,max_leaf=8,"
+          "morton_bits=10,threads=0");
+    CHECK(parse_accel_spec("bvh:pair,from=sweep").canonical() ==
+          "bvh:pair,from=sweep,leaves=soa,leaf_align=4,order=area,max_leaf=32,ct=16,ci=1,block=4,"
+          "threads=0");
+}
+
+TEST_CASE("a parameter depends on a choice declared before it, and threads only on the build",
+          "[accel][spec]") {
+    for (const AccelEntry& e : accel_registry()) {
+        for (std::size_t i = 0; i < e.params.size(); ++i) {
+            const ParamSpec& p = e.params[i];
+            CAPTURE(e.name, p.key);
+            CHECK(p.build_only == (p.key == "threads"));
+            if (p.needs.empty()) {
+                CHECK(p.needs_values.empty());
+                continue;
+            }
+            // Declared before: no cycles, and the canonical spec names the setting first.
+            std::size_t j = 0;
+            while (j < i && e.params[j].key != p.needs) {
+                ++j;
+            }
+            REQUIRE(j < i);
+            REQUIRE(e.params[j].kind == ParamKind::choice);
+            CHECK(!p.needs_values.empty());
+            for (std::string_view v : p.needs_values) {
+                CAPTURE(v);
+                const auto& c = e.params[j].choices;
+                CHECK(std::find(c.begin(), c.end(), v) != c.end());
+            }
+        }
+    }
 }
 
 TEST_CASE("every row's canonical spec parses back to itself", "[accel][spec]") {

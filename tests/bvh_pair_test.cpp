@@ -28,7 +28,8 @@ TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[acce
     const Bvh source =
         std::get<Bvh>(build_accel(test::spec_with("bvh:" + from, settings), soup.input()));
     const AnyAccel any = build_accel(
-        test::spec_with("bvh:pair", settings) + ",from=" + from + ",leaf_align=1", soup.input());
+        test::spec_with("bvh:pair", "from=" + from + "," + std::string(settings) + ",leaf_align=1"),
+        soup.input());
     const PairBvh& pair = std::get<PairBvh>(any);
     REQUIRE(pair.validate().empty());
     CHECK(pair == PairBvh::convert(source));

@@ -272,8 +272,8 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
         const AccelInfo bi = accel_info(binary);
         for (const char* wide : {"bvh4", "bvh8", "bvh16", "bvh8q"}) {
             CAPTURE(from, wide);
-            const AnyAccel w =
-                build_accel(test::spec_with(wide, source) + ",from=" + from, soup.input());
+            const AnyAccel w = build_accel(
+                test::spec_with(wide, "from=" + from + "," + std::string(source)), soup.input());
             REQUIRE(accel_validate(w).empty());
             const AccelInfo wi = accel_info(w);
             CHECK(wi.leaves == bi.leaves);  // leaves are kept as the binary build made them

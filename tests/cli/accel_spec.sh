@@ -1,6 +1,7 @@
 # Sourced by cli_test.sh: structure specs on the command line. Parameters reach the builder
 # (max_leaf=1 and max_leaf=8 give different nodes/ray and bytes/prim, both with brute force's hit
-# file), the JSON names the canonical spec, and bad keys or values are one-line errors.
+# file), the JSON names the canonical spec, and bad keys or values (or keys without effect) are
+# one-line errors.
 "$RTLAB" gen soup --size 1 --seed 5 -o "$tmp/spec_soup.ply" 2>/dev/null
 "$RTLAB" rays --scene "$tmp/spec_soup.ply" --kind primary --count 2000 --seed 2 \
     -o "$tmp/spec.rays" 2>/dev/null
@@ -50,3 +51,15 @@ expect_error "spec unknown structure" render --accel 'bvh:nope' scenes/glass.jso
 expect_ok "list json" list --json
 grep -q '"default_spec": "grid:uniform,density=4,max_res=512,threads=0"' "$tmp/out" ||
     { echo "FAIL (spec): rtlab list --json lacks the grid's default spec"; fail=1; }
+# A key without effect for the other settings is refused; rtlab list says where each key applies.
+expect_error "spec key without effect" trace --scene "$tmp/spec_soup.ply" --rays "$tmp/spec.rays" \
+    --accel 'bvh8,from=lbvh,ct=1'
+grep -q "'ct' has no effect with from=lbvh" "$tmp/err" || { echo "FAIL (spec): $(cat "$tmp/err")"; fail=1; }
+expect_ok "list json needs" list --json
+grep -q '"default_spec": "bvh8,from=pbinned,leaves=soa,leaf_align=4,' "$tmp/out" &&
+    ! grep -q '"default_spec": "bvh8,.*morton_bits' "$tmp/out" &&
+    grep -q '"build_only": true' "$tmp/out" && grep -q '"values": \[' "$tmp/out" ||
+    { echo "FAIL (spec): rtlab list --json lacks the keys' dependencies"; fail=1; }
+expect_ok "list text needs" list
+grep -q 'morton_bits.*\[only with from=lbvh\]' "$tmp/out" ||
+    { echo "FAIL (spec): rtlab list does not say where morton_bits applies"; fail=1; }

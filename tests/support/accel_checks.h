@@ -25,17 +25,29 @@ inline bool declares(const AccelEntry& e, std::string_view key) {
 }
 
 /// `row` followed by ",key=value" for each entry of `settings` ("key=value,key=value...") whose key
-/// registry row `row` declares: one set of tree settings spelled the same way for rows with and
-/// without, say, SAH costs.
+/// registry row `row` declares and which takes effect with the other settings: one set of tree
+/// settings spelled the same way for rows with and without, say, SAH costs, or for a layout row
+/// built from any source builder (`from=lbvh` leaves out ct, bins, ...).
 inline std::string spec_with(const std::string& row, std::string_view settings) {
     const AccelEntry* e = find_accel(row);
     REQUIRE(e != nullptr);
-    std::string out = row;
+    AccelSpec s = default_spec(*e);
+    std::vector<std::pair<std::size_t, std::string_view>> given;  // parameter index, key=value
     while (!settings.empty()) {
         const std::size_t comma = settings.find(',');
         const std::string_view kv = settings.substr(0, comma);
         settings = comma == std::string_view::npos ? "" : settings.substr(comma + 1);
-        if (declares(*e, kv.substr(0, kv.find('=')))) {
+        const std::size_t eq = kv.find('=');
+        for (std::size_t i = 0; i < e->params.size(); ++i) {
+            if (e->params[i].key == kv.substr(0, eq)) {
+                s.values[i] = e->params[i].parse(row, kv.substr(eq + 1));
+                given.emplace_back(i, kv);
+            }
+        }
+    }
+    std::string out = row;
+    for (const auto& [i, kv] : given) {
+        if (s.applies(i)) {
             out += ",";
             out += kv;
         }
