@@ -19,17 +19,24 @@
 namespace rtlab {
 
 /// Bounds of the part of triangle (a, b, c) inside box, rounded outward: they contain the exact
-/// part (empty only when the exact triangle misses the box). Float clipping moves each new
-/// vertex by a few ulps of the triangle's coordinates per plane (its position along an edge
-/// nearly parallel to a plane may move much further, but only where the edge runs within those
-/// ulps of the plane), so the triangle is clipped to the box widened by pad = 2^-17 of its largest
-/// coordinate per axis (64 ulps, over the 6 planes' few each), the result is widened by the same
-/// and then cut to the box. Without this a triangle whose exact part in a thin cell (cells of
-/// 1e-17 beside coordinates of 0.25) rounded away was never referenced there.
+/// part (empty only when the exact triangle misses the box). A vertex made by clipping lies
+/// exactly on its plane, but its other coordinates err by a few ulps of the triangle's
+/// coordinates, and a later plane crossing an edge that runs nearly parallel to it turns that
+/// error into a long slide along the edge. So the triangle is clipped to the box widened by pad
+/// = 2^-17 of its largest coordinate per axis (64 ulps, far above the few ulps a vertex errs by
+/// across the plane), every coordinate a clip computed (not one of the triangle's own, not a
+/// plane's) widens the bounds by pad, and the result is cut to the box. Exact coordinates get no
+/// pad, so a triangle touching a plane is not spread across it. Without this a triangle whose
+/// exact part in a thin cell (1e-17 wide beside coordinates of 0.25) rounded away was never
+/// referenced there (tests/clip_test.cpp checks the bounds against an exact clip).
 inline Bounds3f clip_triangle_bounds(const Vec3f& a,
                                      const Vec3f& b,
                                      const Vec3f& c,
                                      const Bounds3f& box) {
+    struct Vertex {
+        Vec3f p;
+        unsigned exact;  ///< bit k: coordinate k is exact
+    };
     Vec3f pad;
     for (std::size_t axis = 0; axis < 3; ++axis) {
         const float mag = std::max({std::abs(a[axis]), std::abs(b[axis]), std::abs(c[axis])});
@@ -37,27 +44,27 @@ inline Bounds3f clip_triangle_bounds(const Vec3f& a,
     }
     const Bounds3f wide{box.lo - pad, box.hi + pad};
     // A convex polygon clipped by 6 planes has at most 3 + 6 vertices.
-    std::array<Vec3f, 9> poly{a, b, c}, next{};
+    std::array<Vertex, 9> poly{Vertex{a, 7u}, Vertex{b, 7u}, Vertex{c, 7u}}, next{};
     std::size_t n = 3;
     for (std::size_t axis = 0; axis < 3 && n > 0; ++axis) {
         for (int side = 0; side < 2 && n > 0; ++side) {
             const float plane = side == 0 ? wide.lo[axis] : wide.hi[axis];
-            const auto inside = [&](const Vec3f& p) {
-                return side == 0 ? p[axis] >= plane : p[axis] <= plane;
+            const auto inside = [&](const Vertex& v) {
+                return side == 0 ? v.p[axis] >= plane : v.p[axis] <= plane;
             };
             std::size_t m = 0;
             for (std::size_t i = 0; i < n; ++i) {
-                const Vec3f& p = poly[i];
-                const Vec3f& q = poly[(i + 1) % n];
+                const Vertex& p = poly[i];
+                const Vertex& q = poly[(i + 1) % n];
                 const bool pin = inside(p), qin = inside(q);
                 if (pin) {
                     next[m++] = p;
                 }
                 if (pin != qin && m < next.size()) {
-                    const float s = (plane - p[axis]) / (q[axis] - p[axis]);
-                    Vec3f x = p + (q - p) * s;
+                    const float s = (plane - p.p[axis]) / (q.p[axis] - p.p[axis]);
+                    Vec3f x = p.p + (q.p - p.p) * s;
                     x[axis] = plane;  // exactly on the plane despite rounding
-                    next[m++] = x;
+                    next[m++] = Vertex{x, 1u << axis};
                 }
             }
             poly = next;
@@ -69,9 +76,13 @@ inline Bounds3f clip_triangle_bounds(const Vec3f& a,
     }
     Bounds3f out;
     for (std::size_t i = 0; i < n; ++i) {
-        out.extend(poly[i]);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const float slack = (poly[i].exact & (1u << k)) != 0 ? 0.0f : pad[k];
+            out.lo[k] = std::min(out.lo[k], poly[i].p[k] - slack);
+            out.hi[k] = std::max(out.hi[k], poly[i].p[k] + slack);
+        }
     }
-    return intersection(Bounds3f{out.lo - pad, out.hi + pad}, box);
+    return intersection(out, box);
 }
 
 /// The part of a triangle inside box, for kd-tree perfect splits. A shape type gets perfect
