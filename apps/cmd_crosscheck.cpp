@@ -1,7 +1,7 @@
 // rtlab crosscheck: runs intersection methods in float and double on seeded ray sets and compares
 // each answer with CGAL's exact predicates.
-#include "apps/args.h"
 #include "apps/commands.h"
+#include "base/split.h"
 #include "crosscheck/accumulator.h"
 #include "crosscheck/crosscheck.h"
 #include "crosscheck/row_json.h"

@@ -2,11 +2,11 @@
 // (complete or not at all), prints ray statistics on stderr, optionally a JSON file of them, and
 // with --explain the scene's features and the integrator instance that runs.
 #include "accel/spec.h"
-#include "apps/args.h"
 #include "apps/commands.h"
 #include "apps/method_check.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/split.h"
 #include "datasets_gen/memory_guard.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"

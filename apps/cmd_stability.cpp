@@ -1,10 +1,10 @@
 // rtlab stability: runs the numerical-stability suite (stability/) and writes its report as
 // markdown (docs/stability.md) and/or JSON; --fixture writes the watertightness scene and rays
 // so `rtlab trace` can be checked on them.
-#include "apps/args.h"
 #include "apps/commands.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/split.h"
 #include "datasets_gen/memory_guard.h"
 #include "mesh/mesh_io.h"
 #include "stability/fixtures.h"

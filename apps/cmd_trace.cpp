@@ -1,10 +1,10 @@
 // rtlab trace: builds one structure per primitive set of a scene, traces a ray file, and prints
 // exactly one JSON object (build and trace time, hits, throughput, optional counts) on stdout.
 #include "accel/spec.h"
-#include "apps/args.h"
 #include "apps/commands.h"
 #include "apps/method_check.h"
 #include "base/atomic_file.h"
+#include "base/split.h"
 #include "scene/scene_io.h"
 #include "trace/binary_io.h"
 #include "trace/measure.h"

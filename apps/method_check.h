@@ -3,8 +3,8 @@
 // --robust, and the command-line wording of the method checks of trace/method_check.h (which
 // `rtlab sweep` applies to its cases too).
 
-#include "apps/args.h"
 #include "base/error.h"
+#include "base/split.h"
 #include "trace/method_check.h"
 #include "trace/scene_tracer.h"
 

@@ -2,32 +2,16 @@
 #include "sweep/case_check.h"
 
 #include "base/error.h"
+#include "base/split.h"
 #include "trace/method_check.h"
 
 #include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
 namespace rtlab::sweep {
-
-namespace {
-
-std::vector<std::string> split_commas(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        if (!item.empty()) {
-            out.push_back(item);
-        }
-    }
-    return out;
-}
-
-}  // namespace
 
 void check_cases(const SweepFile& s, const std::vector<Case>& cases, const std::string& where) {
     // Cases come scene by scene (trace cases), so each scene is made, looked at and dropped once.

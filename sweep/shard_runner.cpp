@@ -5,6 +5,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/fnv1a.h"
+#include "base/split.h"
 #include "crosscheck/crosscheck.h"
 #include "crosscheck/row_json.h"
 #include "render/image.h"
@@ -22,7 +23,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -30,18 +30,6 @@
 namespace rtlab::sweep {
 
 namespace {
-
-std::vector<std::string> split_commas(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        if (!item.empty()) {
-            out.push_back(item);
-        }
-    }
-    return out;
-}
 
 // What a shard keeps between cases: the current scene and its ray sets, the current tracer.
 struct Workspace {

@@ -1,11 +1,11 @@
 #pragma once
-// Small argument helpers shared by the subcommands.
+// Splitting comma-separated option values ("a,b,,c"), shared by the command line and sweep files.
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
-namespace rtlab::app {
+namespace rtlab {
 
 /// Splits "a,b,,c" into {"a", "b", "c"} (empty items dropped).
 inline std::vector<std::string> split_commas(const std::string& s) {
@@ -21,4 +21,4 @@ inline std::vector<std::string> split_commas(const std::string& s) {
     return out;
 }
 
-}  // namespace rtlab::app
+}  // namespace rtlab
