@@ -167,7 +167,10 @@ std::vector<std::string> canonical_keys(const std::string& text) {
     return keys;
 }
 
-TEST_CASE("every key a spec accepts takes effect, every key it refuses has none", "[accel][spec]") {
+// Hundreds of builds (every row, context and key at both ends of its range): about 10 s in
+// release and over 10 minutes under asan, so it runs with the slow tests in the release build.
+TEST_CASE("every key a spec accepts takes effect, every key it refuses has none",
+          "[accel][spec][.slow]") {
     const std::vector<BuildInput> in = inputs();
     for (const AccelEntry& e : accel_registry()) {
         for (const std::string& context : contexts(e)) {
