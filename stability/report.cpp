@@ -167,15 +167,18 @@ constexpr std::string_view conservative_traversal_notes =
     "splits through one vertex on two or three axes, nested in the tree, crossed by a ray from "
     "the exact centre at one t (the walk lost rays there until the points stopped carrying "
     "lowered distances), and corners of split faces.\n"
-    "- **Uniform and two-level grids.** The grid box is clipped with the robust slab test; the "
-    "3D-DDA's entry cell and crossing times are rounded, so a ray passing within rounding of a "
-    "cell edge or corner may step through a neighbour first. Builders list every primitive in "
-    "each cell its box reaches once widened by 1e-4 of a cell plus 4 ulps of the grid's "
-    "coordinates (accel/grid/cell_map.h), both levels alike. This covers the DDA's rounding, a few "
-    "ulps of |org| + |dir t|, while the ray's origin lies within a few hundred cells of the grid; "
-    "from farther away the argument does not hold (no leak has been found there: the `adversarial` "
-    "case's rays from 10 to 1e4 radii away all hit). Weak spot: rays at cell boundaries, edges and "
-    "corners of both levels, and from far outside into the mesh.\n";
+    "- **Uniform and two-level grids.** The grid box is clipped with the robust slab test, so "
+    "the walk's window starts no later and ends no earlier than the exact ray's. The robust "
+    "3D-DDA then runs in double: per axis, the cell it holds at each t is the exact point's cell "
+    "or a neighbour across a plane the point lies within 2^-50 (|org| + |x|) of, and it walks "
+    "every t of the window (an index that would leave the grid stays in its last cell). Builders "
+    "list every primitive in each cell its box reaches once widened by 1e-4 of a cell plus 4 "
+    "ulps of the grid's coordinates, cell indices computed in double (accel/grid/cell_map.h), "
+    "both levels alike. The rounding stays inside that padding while the origin lies within "
+    "about 10^10 cells of the grid; farther out the walk visits every cell (the full argument is "
+    "in accel/grid/dda.h). Weak spot: rays from far away, where float rounding of the entry point "
+    "and crossing times spans cells (a test traces them from 10^2 to 10^11 radii; the float walk "
+    "lost rays there), and rays at cell boundaries, edges and corners of both levels.\n";
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "intersect/triangle/sphere_mesh.h"
 #include "stability/cases.h"
 #include "stability/fixtures.h"
+#include "stability/leak_tally.h"
 #include "stability/report.h"
 #include "stability/structure_planes.h"
 #include "support/temp_dir.h"
@@ -24,6 +25,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <variant>
 
 namespace {
@@ -278,6 +280,68 @@ TEST_CASE("robust kd-tree walks never leak where nested splits meet at a vertex"
             }
             CAPTURE(m[0], m[1], m[2], m[3], spec, rays.size());
             CHECK(leaks == 0);
+        }
+    }
+}
+
+TEST_CASE("robust grid walks lose no ray from far origins", "[stability]") {
+    // The 3D-DDA's weak spot: from far away its entry point and crossing times round by ulps of
+    // |org|, many cells' worth. Rays from 10^2 to 10^11 radii (past 10^10 cells the walk visits
+    // every cell) towards vertices, cell corners and cell edges of the built grid; the oracle is
+    // exact: a ray is lost when the method alone hits a triangle that the exact ray meets, yet the
+    // grid returns no hit.
+    using M = rtlab::Watertight<float>;
+    for (const auto& [seed, rings, segments, jitter] :
+         std::array<std::tuple<std::uint64_t, std::uint32_t, std::uint32_t, double>, 2>{
+             {{3, 12, 16, 0.3}, {13, 24, 32, 0.45}}}) {
+        const rtlab::IndexedMesh im = rtlab::perturbed_sphere_mesh(seed, rings, segments, jitter);
+        rtlab::TriangleMesh mesh;
+        mesh.positions = im.vertices;
+        mesh.triangles = im.faces;
+        const rtlab::Scene scene = rtlab::stab::mesh_scene(mesh);
+        for (const char* spec : {"grid:uniform", "grid:uniform,density=8", "grid:two_level"}) {
+            rtlab::TraceSetup setup;
+            setup.accel = spec;
+            setup.methods = {"watertight"};
+            setup.robust = true;
+            const rtlab::SceneTracer tracer(scene, setup);
+            const rtlab::AnyAccel& accel =
+                std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
+                           tracer.sets().at(0));
+            const std::vector<rtlab::stab::StructurePlane> planes =
+                rtlab::stab::structure_planes(accel);
+            REQUIRE(!planes.empty());
+            rtlab::stab::Sampler rng(seed, 77);
+            std::vector<rtlab::Rayf> rays;
+            while (rays.size() < 3000) {
+                rtlab::Rayf r;
+                r.org = rtlab::Vec3f(rng.unit() * std::pow(10.0, rng.uniform(2, 11)));
+                rtlab::Vec3f target = mesh.positions[rng.index(mesh.positions.size())];
+                if (rays.size() % 3 != 0) {  // a corner (or an edge point) of a cell face
+                    const auto& p = planes[rng.index(planes.size())];
+                    target = p.face.lo;
+                    for (const std::uint32_t a : {(p.axis + 1) % 3, (p.axis + 2) % 3}) {
+                        const float u = static_cast<float>(
+                            rays.size() % 3 == 1 ? rng.index(2) : rng.uniform(0, 1));
+                        target[a] = p.face.lo[a] + u * (p.face.hi[a] - p.face.lo[a]);
+                    }
+                }
+                r.dir = target - r.org;
+                if (rtlab::is_valid(r)) {
+                    rays.push_back(r);
+                }
+            }
+            std::vector<rtlab::Hit> hits(rays.size());
+            tracer.intersect(rays, hits);
+            rtlab::stab::LeakTally tally;
+            rtlab::stab::tally_leaks<M>(mesh, rays, hits, tally);
+            std::size_t must_hit = 0;
+            for (const rtlab::Rayf& r : rays) {
+                must_hit += rtlab::stab::hits_an_exact_triangle<M>(mesh, r) ? 1 : 0;
+            }
+            CAPTURE(seed, rings, segments, jitter, spec, rays.size(), tally.leaks, tally.outside);
+            CHECK(must_hit > rays.size() / 3);  // many rays must hit: the test has teeth
+            CHECK(tally.lost == 0);
         }
     }
 }

@@ -33,18 +33,23 @@ struct CellMapper {
 
     explicit CellMapper(const GridFrame& frame) : f(frame), pad(cell_padding(frame)) {}
 
-    std::uint32_t cell_of(float x, std::size_t a) const {
-        const float c = std::floor((x - f.box.lo[a]) * f.inv_cell_size[a]);
-        const auto last = static_cast<float>(f.res[a] - 1);
-        return static_cast<std::uint32_t>(std::clamp(c, 0.0f, last));
+    /// The cell of coordinate x along axis a, computed in double (so only the padding's 1e-4 cell,
+    /// not this rounding, sets how near a box a listed cell lies: dda_walk_robust relies on it).
+    std::uint32_t cell_of(double x, std::size_t a) const {
+        if (f.res[a] <= 1) {
+            return 0;
+        }
+        const double c = std::floor((x - static_cast<double>(f.box.lo[a])) /
+                                    static_cast<double>(f.cell_size[a]));
+        return static_cast<std::uint32_t>(std::clamp(c, 0.0, static_cast<double>(f.res[a] - 1)));
     }
     /// The cells [lo, hi] (inclusive, per axis) box b overlaps once widened by pad.
     void cell_range(const Bounds3f& b,
                     std::array<std::uint32_t, 3>& lo,
                     std::array<std::uint32_t, 3>& hi) const {
         for (std::size_t a = 0; a < 3; ++a) {
-            lo[a] = cell_of(b.lo[a] - pad[a], a);
-            hi[a] = cell_of(b.hi[a] + pad[a], a);
+            lo[a] = cell_of(static_cast<double>(b.lo[a]) - static_cast<double>(pad[a]), a);
+            hi[a] = cell_of(static_cast<double>(b.hi[a]) + static_cast<double>(pad[a]), a);
         }
     }
     /// Cell (x, y, z)'s box widened by pad.

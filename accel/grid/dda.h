@@ -7,6 +7,7 @@
 #include "accel/accel.h"
 #include "intersect/box/slabs.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -53,18 +54,112 @@ std::array<std::uint32_t, 3> woo_resolution(const Bounds3f& box,
                                             double density,
                                             std::uint32_t max_res);
 
+/// True when the robust walk's rounding stays within the builders' padding for this ray: on every
+/// axis with more than one cell, 2^-50 (|org| + the grid's largest |coordinate|) <= 1e-4 cell / 2
+/// (cell_map.h pads by 1e-4 cell). It fails only for origins some 10^10 cells away.
+inline bool dda_robust_bound_holds(const GridFrame& g, const Rayf& ray) {
+    for (std::size_t a = 0; a < 3; ++a) {
+        const double mag = std::max(std::abs(static_cast<double>(g.box.lo[a])),
+                                    std::abs(static_cast<double>(g.box.hi[a])));
+        if (g.res[a] > 1 && 0x1.0p-50 * (mag + std::abs(static_cast<double>(ray.org[a]))) >
+                                0.5e-4 * static_cast<double>(g.cell_size[a])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/// The robust 3D-DDA over the clipped window [t0, t1] (t0 no later than the exact ray's entry,
+/// t1 no earlier than its exit: the outward-widened clip). Conservative, and why:
+/// - It runs in double. A cell's region is [lo + k s, lo + (k + 1) s] on each axis (lo, s the
+///   frame's floats), the first and last cells extended to infinity as the builders' clamp does.
+///   Plane positions and the entry point's coordinates are then exact up to 2^-53 relative, and
+///   a crossing time (x - org) * (1 / dir) is off by at most 4 u (|x| + |org|) / |dir| (u = 2^-53).
+/// - Per axis, the cell the walk holds at parameter tau is the exact point p(tau)'s cell, or its
+///   neighbour across a plane that p(tau) is within 2^-50 (|org| + |x|) of: each axis's index
+///   changes only at that axis's own (rounded) crossing times. The walk visits the cell it holds
+///   for every tau in [t0, t1]: it never stops at the grid's side (an index that would leave the
+///   grid stays in its last cell and that axis stops stepping), only past t1, or once the hit
+///   found lies within the cell just visited.
+/// - Builders list a primitive in every cell whose region is within 1e-4 cell of its box on each
+///   axis (cell_map.h; the 4-ulp term of the padding absorbs the float cell boxes the clipping
+///   builders use). So when dda_robust_bound_holds, every primitive the exact ray meets, at p(tau)
+///   inside its box, is listed in a cell the walk visits. When the bound fails, every cell is
+///   visited. The error model is the standard one of Higham, "Accuracy and Stability of Numerical
+///   Algorithms" (2002), ch. 3.
+template <class S, class CellFn>
+bool dda_walk_robust(
+    const GridFrame& g, const Rayf& ray, float t0f, float t1f, S& stats, CellFn&& cell_fn) {
+    if (!dda_robust_bound_holds(g, ray)) {
+        for (std::size_t c = 0; c < g.cell_count(); ++c) {
+            stats.count_node();
+            if (cell_fn(c)) {
+                return true;
+            }
+        }
+        return false;
+    }
+    const double t0 = t0f, t1 = t1f;
+    std::array<int, 3> cell{}, step{};
+    std::array<double, 3> t_next{}, org{}, inv_dir{};
+    const auto last = [&](std::size_t a) { return static_cast<int>(g.res[a]) - 1; };
+    // Where the ray leaves its cell along axis a (+inf at the grid's side or when it never does).
+    const auto next_crossing = [&](std::size_t a) {
+        if (step[a] == 0 || cell[a] == (step[a] > 0 ? last(a) : 0)) {
+            return std::numeric_limits<double>::infinity();
+        }
+        const int plane = step[a] > 0 ? cell[a] + 1 : cell[a];
+        const double x = static_cast<double>(g.box.lo[a]) +
+                         static_cast<double>(plane) * static_cast<double>(g.cell_size[a]);
+        return (x - org[a]) * inv_dir[a];
+    };
+    for (std::size_t a = 0; a < 3; ++a) {
+        org[a] = ray.org[a];
+        const double d = ray.dir[a];
+        step[a] = d > 0 ? 1 : (d < 0 ? -1 : 0);
+        inv_dir[a] = step[a] != 0 ? 1.0 / d : 0.0;
+        if (g.res[a] > 1) {
+            const double e = org[a] + t0 * d;  // t0 * d is exact in double
+            const double c = std::floor((e - static_cast<double>(g.box.lo[a])) /
+                                        static_cast<double>(g.cell_size[a]));
+            cell[a] =
+                c > static_cast<double>(last(a)) ? last(a) : (c > 0.0 ? static_cast<int>(c) : 0);
+        }
+        t_next[a] = next_crossing(a);
+    }
+    for (;;) {
+        stats.count_node();
+        const std::size_t axis = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2)
+                                                       : (t_next[1] < t_next[2] ? 1 : 2);
+        const double t_exit = t_next[axis] < t1 ? t_next[axis] : t1;
+        if (cell_fn(g.index(static_cast<std::uint32_t>(cell[0]),
+                            static_cast<std::uint32_t>(cell[1]),
+                            static_cast<std::uint32_t>(cell[2])))) {
+            return true;
+        }
+        // A hit inside this cell cannot be beaten by a later cell; also stop past the window.
+        if (static_cast<double>(ray.tmax) <= t_exit || t_exit >= t1) {
+            return false;
+        }
+        cell[axis] += step[axis];
+        t_next[axis] = next_crossing(axis);
+    }
+}
+
 /// Walks the cells of frame g that ray pierces within its window [ray.tmin, ray.tmax] front to
 /// back, calling cell_fn(linear index) (counted as a node) for each; cell_fn returns true to stop
 /// the walk, and then the walk returns true. The walk ends after a cell once ray.tmax (which
 /// cell_fn may shrink) lies within that cell, or at the window's or grid's end, returning false.
-/// IsRobust widens the box clip outward (Ize 2013); builders pad primitive boxes against the
-/// rounding of the entry point and crossing times.
+/// IsRobust clips outward (Ize 2013) and walks by dda_walk_robust; the plain walk runs in float.
 template <bool IsRobust, class S, class CellFn>
 bool dda_walk(
     const GridFrame& g, const Rayf& ray, const SlabRay<float>& sr, S& stats, CellFn&& cell_fn) {
     float t0 = ray.tmin, t1 = ray.tmax;
     if (!clip_slabs<IsRobust>(g.box.lo, g.box.hi, sr, t0, t1)) {
         return false;
+    }
+    if constexpr (IsRobust) {
+        return dda_walk_robust(g, ray, t0, t1, stats, cell_fn);
     }
     // The t where the ray leaves cell c along axis a (+inf when it never does).
     const auto next_crossing = [&](std::size_t a, int c, int s) {
