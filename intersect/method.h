@@ -4,7 +4,8 @@
 //
 // Per-ray set-up: a method may declare `using RayData = ...;` with
 // `static RayData precompute(const Ray<Scalar>&)` and the overloads
-// `intersect(prepared, ray, ray_data)` / `occluded(prepared, ray, ray_data)`. Callers that test
+// `intersect(prepared, ray, ray_data)` / `occluded(prepared, ray, ray_data)`; MethodDefaults
+// supplies the forms a method does not write. Callers that test
 // one ray against many primitives (traversal, benchmarks) call precompute once per ray through
 // precompute_ray<M>() and then intersect_with<M>() / occluded_with<M>(); methods without set-up
 // get an empty NoRayData and the two-argument calls. RayData depends on the ray's origin and
@@ -51,6 +52,30 @@ concept HasRayData = OcclusionMethod<M> && requires(const typename M::Prepared& 
                                                     const typename M::RayData& d) {
     { M::precompute(r) } -> std::same_as<typename M::RayData>;
     { M::occluded(p, r, d) } -> std::same_as<bool>;
+};
+
+/// What a method need not write (derive from it, CRTP): occluded() as "intersect() reports a hit"
+/// in both forms, and, for a method with per-ray set-up, intersect(p, ray) as intersect(p, ray,
+/// precompute(ray)). A method writes its own only where it is cheaper (an occlusion-only method,
+/// an early out); one that writes only the three-argument intersect adds
+/// `using MethodDefaults<Self>::intersect;`.
+template <class Self>
+struct MethodDefaults {
+    /// Same as intersect(p, ray, precompute(ray)).
+    template <class P, class R>
+    static auto intersect(const P& p, const R& ray) {
+        return Self::intersect(p, ray, Self::precompute(ray));
+    }
+    /// True when intersect() would report a hit.
+    template <class P, class R>
+    static bool occluded(const P& p, const R& ray) {
+        return Self::intersect(p, ray).has_value();
+    }
+    /// Same as occluded(p, ray) with d = precompute(ray).
+    template <class P, class R, class D>
+    static bool occluded(const P& p, const R& ray, const D& d) {
+        return Self::intersect(p, ray, d).has_value();
+    }
 };
 
 /// The per-ray data of methods without set-up.

@@ -174,7 +174,7 @@ TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by sl
                 const Scalar want = scalar(prims, slots, first, count, ray);
                 hits += want.closest ? 1 : 0;
                 inside += want.closest && want.closest->hit.t > 0 &&
-                          M::roots(prims[slots[want.closest->slot]], ray)->first < ray.tmin;
+                          M::roots(prims[slots[want.closest->slot]], ray, rd)->first < ray.tmin;
                 for (const SimdLevel l : simd_levels) {
                     if (l > simd_supported()) {
                         continue;

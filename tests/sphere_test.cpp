@@ -55,7 +55,7 @@ TEMPLATE_TEST_CASE("sphere methods: analytic roots and windows",
     const auto p = TestType::prepare({{T(1), T(2), T(3)}, T(2)});
     SECTION("entering and leaving roots, non-unit direction") {
         const Ray<T> ray{{T(1), T(2), T(-7)}, {T(0), T(0), T(2)}};  // |d| = 2: t halves
-        const auto roots = TestType::roots(p, ray);
+        const auto roots = TestType::roots(p, ray, TestType::precompute(ray));
         REQUIRE(roots);
         CHECK(roots->first == Approx(4));
         CHECK(roots->second == Approx(6));
@@ -128,7 +128,8 @@ TEST_CASE("sphere methods agree on easy random rays", "[intersect][sphere][prope
         const auto a = SphereGeometric<double>::intersect(SphereGeometric<double>::prepare(s), ray);
         const auto b = SphereAlgebraic<double>::intersect(SphereAlgebraic<double>::prepare(s), ray);
         const auto c = SphereStable<double>::intersect(SphereStable<double>::prepare(s), ray);
-        const auto roots = SphereStable<double>::roots(SphereStable<double>::prepare(s), ray);
+        const auto roots = SphereStable<double>::roots(SphereStable<double>::prepare(s), ray,
+                                                       SphereStable<double>::precompute(ray));
         // Skip near-tangent rays, where rounding may legitimately flip the answer.
         if (roots && std::abs(roots->second - roots->first) < 1e-6) {
             continue;

@@ -6,6 +6,7 @@
 
 #include "intersect/box/slabs.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 
 #include <optional>
 #include <string_view>
@@ -31,7 +32,8 @@ std::optional<PrimHit<T>> aabb_intersect(const Bounds3<T>& b,
 
 /// Fast slab test: exact IEEE reciprocals, no padding; may miss boxes grazed within rounding.
 template <class T>
-struct AabbSlabs {
+struct AabbSlabs : MethodDefaults<AabbSlabs<T>> {
+    using MethodDefaults<AabbSlabs<T>>::intersect;
     using Scalar = T;
     using Shape = Bounds3<T>;
     using Prepared = Bounds3<T>;
@@ -47,29 +49,18 @@ struct AabbSlabs {
     static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
     /// Entry t of the window [tmin, tmax] into the closed box (tmin when the origin is inside);
     /// u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-    /// Same as intersect(p, ray) with r = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& r) {
         return detail::aabb_intersect<false>(p, ray, r);
-    }
-    /// Same as occluded(p, ray) with r = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
-        return intersect(p, ray, r).has_value();
-    }
-    /// True when the window meets the box.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 
 /// Robust slab test (Ize 2013): the computed interval contains the exact one, so a box the exact
 /// ray touches is never missed; boxes missed by a few ulps may be reported as hits.
 template <class T>
-struct AabbSlabsRobust {
+struct AabbSlabsRobust : MethodDefaults<AabbSlabsRobust<T>> {
+    using MethodDefaults<AabbSlabsRobust<T>>::intersect;
     using Scalar = T;
     using Shape = Bounds3<T>;
     using Prepared = Bounds3<T>;
@@ -84,22 +75,10 @@ struct AabbSlabsRobust {
     /// The reciprocal direction of ray (once per ray, shared by every box).
     static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
     /// Entry t (padded down by up to 2*gamma(3) relative; tmin when inside); u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-    /// Same as intersect(p, ray) with r = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& r) {
         return detail::aabb_intersect<true>(p, ray, r);
-    }
-    /// Same as occluded(p, ray) with r = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
-        return intersect(p, ray, r).has_value();
-    }
-    /// True when the padded window meets the box.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

@@ -5,6 +5,7 @@
 
 #include "intersect/box/slabs.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 
 #include <cmath>
 #include <limits>
@@ -25,7 +26,7 @@ struct Obb {
 
 /// Slab test along the three box axes.
 template <class T>
-struct ObbSlabs {
+struct ObbSlabs : MethodDefaults<ObbSlabs<T>> {
     using Scalar = T;
     using Shape = Obb<T>;
     using Prepared = Obb<T>;
@@ -81,11 +82,6 @@ struct ObbSlabs {
             }
         }
         return PrimHit<T>{t0, T(0), T(0)};
-    }
-
-    /// True when the window meets the box.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

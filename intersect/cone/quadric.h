@@ -7,6 +7,7 @@
 // nearly parallel to a generator. Cost: 4 dot products, 1 sqrt, 2 divisions; dd = d.d per ray.
 
 #include "intersect/cone/cone.h"
+#include "intersect/method.h"
 
 #include <cmath>
 #include <optional>
@@ -16,7 +17,8 @@ namespace rtlab {
 
 /// The quadric in closed form, in world coordinates.
 template <class T>
-struct ConeQuadric {
+struct ConeQuadric : MethodDefaults<ConeQuadric<T>> {
+    using MethodDefaults<ConeQuadric<T>>::intersect;
     using Scalar = T;
     using Shape = Cone<T>;
     using Prepared = PreparedCone<T>;
@@ -31,7 +33,8 @@ struct ConeQuadric {
     /// dd = dir . dir of ray (once per ray, shared by every cone).
     static RayData precompute(const Ray<T>& ray) { return ConeRay<T>::make(ray); }
 
-    /// Same as intersect(p, ray) with rd = precompute(ray).
+    /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
+    /// hit's position along the axis (0 base, 1 apex).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& rd) {
@@ -65,22 +68,6 @@ struct ConeQuadric {
         }
         detail::cap_hits(p, ray, s0, sd, best);
         return best;
-    }
-
-    /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
-    /// hit's position along the axis (0 base, 1 apex).
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// True when the surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return intersect(p, ray, rd).has_value();
     }
 };
 

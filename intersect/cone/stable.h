@@ -13,6 +13,7 @@
 // epsilon. Cost: about 1.4x the closed form (asan build); dd = d.d per ray.
 
 #include "intersect/cone/cone.h"
+#include "intersect/method.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,8 @@ namespace rtlab {
 
 /// Local frame about the midpoint, moved origin, stable discriminant and roots.
 template <class T>
-struct ConeStable {
+struct ConeStable : MethodDefaults<ConeStable<T>> {
+    using MethodDefaults<ConeStable<T>>::intersect;
     using Scalar = T;
     using Shape = Cone<T>;
     using Prepared = PreparedCone<T>;
@@ -38,7 +40,8 @@ struct ConeStable {
     /// dd = dir . dir of ray (once per ray, shared by every cone).
     static RayData precompute(const Ray<T>& ray) { return ConeRay<T>::make(ray); }
 
-    /// Same as intersect(p, ray) with rd = precompute(ray).
+    /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
+    /// hit's position along the axis (0 base, 1 apex).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& rd) {
@@ -98,22 +101,6 @@ struct ConeStable {
             }
         }
         return best;
-    }
-
-    /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
-    /// hit's position along the axis (0 base, 1 apex).
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// True when the surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return intersect(p, ray, rd).has_value();
     }
 };
 

@@ -20,10 +20,9 @@
 
 namespace rtlab {
 
-/// Members common to the three methods (shape, prepare, bounds, per-ray set-up, occluded,
-/// normal).
+/// Members common to the three methods (shape, prepare, bounds, per-ray set-up, normal).
 template <template <class> class Surface, class T, class Derived>
-struct ImplicitMethodBase {
+struct ImplicitMethodBase : MethodDefaults<Derived> {
     using Scalar = T;
     using Shape = Surface<T>;
     using Prepared = PreparedImplicit<Shape>;
@@ -36,14 +35,6 @@ struct ImplicitMethodBase {
     static Bounds3<T> bounds(const Prepared& p) { return p.box; }
     /// The reciprocal direction of ray (once per ray, shared by every surface).
     static RayData precompute(const Ray<T>& ray) { return ImplicitRay<T>::make(ray); }
-    /// True when the surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return Derived::intersect(p, ray).has_value();
-    }
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return Derived::intersect(p, ray, rd).has_value();
-    }
     /// Unit normal (normalised gradient) at the hit point of ray at hit.t.
     static Vec3<T> normal(const Prepared& p, const Ray<T>& ray, const PrimHit<T>& hit) {
         return implicit_normal(p, ray.at(hit.t));
@@ -55,15 +46,10 @@ struct ImplicitMethodBase {
 /// kept by the small discriminant slack of solve_quadratic/solve_cubic.
 template <template <class> class Surface, class T>
 struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Surface, T>> {
+    using MethodDefaults<ImplicitClosedForm>::intersect;
     static constexpr std::string_view name = "closed_form";
 
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray) {
-        return intersect(p, ray, ImplicitRay<T>::make(ray));
-    }
-
-    /// Same as intersect(p, ray) with rd = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray,
                                                const ImplicitRay<T>& rd) {
@@ -81,16 +67,11 @@ struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Su
 /// still found; a tangent (double) root is found only if p is exactly 0 at the extremum.
 template <template <class> class Surface, class T>
 struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T>> {
+    using MethodDefaults<ImplicitNewton>::intersect;
     static constexpr std::string_view name = "newton";
     static constexpr int steps = 16;
 
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray) {
-        return intersect(p, ray, ImplicitRay<T>::make(ray));
-    }
-
-    /// Same as intersect(p, ray) with rd = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray,
                                                const ImplicitRay<T>& rd) {
@@ -145,15 +126,10 @@ struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T
 /// Laguerre: all complex roots with deflation, the smallest real one in the window.
 template <template <class> class Surface, class T>
 struct ImplicitLaguerre : ImplicitMethodBase<Surface, T, ImplicitLaguerre<Surface, T>> {
+    using MethodDefaults<ImplicitLaguerre>::intersect;
     static constexpr std::string_view name = "laguerre";
 
     /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray) {
-        return intersect(p, ray, ImplicitRay<T>::make(ray));
-    }
-
-    /// Same as intersect(p, ray) with rd = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
                                                const Ray<T>& ray,
                                                const ImplicitRay<T>& rd) {

@@ -3,6 +3,7 @@
 // projection (Haines 1994, "Point in Polygon Strategies", Graphics Gems IV). No epsilon:
 // half-open rule below. Cost: plane step + per edge 2 sub, 2 compares, <= 2 mul.
 
+#include "intersect/method.h"
 #include "intersect/polygon/polygon.h"
 
 #include <optional>
@@ -16,7 +17,7 @@ namespace rtlab {
 /// exactly at the point (u == 0) does not count, so a point on an edge shared by two polygons is
 /// inside exactly one of them.
 template <class T>
-struct PolygonCrossing {
+struct PolygonCrossing : MethodDefaults<PolygonCrossing<T>> {
     using Scalar = T;
     using Shape = Polygon<T>;
     using Prepared = PreparedPolygon<T>;
@@ -62,10 +63,6 @@ struct PolygonCrossing {
             return std::nullopt;
         }
         return PrimHit<T>{h->t, T(0), T(0)};
-    }
-    /// True when the polygon is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

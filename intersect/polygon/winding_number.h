@@ -4,6 +4,7 @@
 // nonzero rule. No epsilon; the same half-open rule as crossing_count. Cost: plane step + per
 // edge 2 sub, 2 compares, <= 2 mul.
 
+#include "intersect/method.h"
 #include "intersect/polygon/polygon.h"
 
 #include <optional>
@@ -16,7 +17,7 @@ namespace rtlab {
 /// v == point.v count as above, and a crossing at u == 0 does not count (as in crossing_count),
 /// so for simple polygons both methods give the same answer.
 template <class T>
-struct PolygonWinding {
+struct PolygonWinding : MethodDefaults<PolygonWinding<T>> {
     using Scalar = T;
     using Shape = Polygon<T>;
     using Prepared = PreparedPolygon<T>;
@@ -55,10 +56,6 @@ struct PolygonWinding {
             return std::nullopt;
         }
         return PrimHit<T>{h->t, T(0), T(0)};
-    }
-    /// True when the polygon is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

@@ -4,6 +4,7 @@
 // and far (relative error ~ eps (D/r)^2). Cost: 2 dot products, 1 sqrt, 2 divisions
 // per test, plus a = d.d once per ray (precompute).
 
+#include "intersect/method.h"
 #include "intersect/sphere/sphere.h"
 
 #include <cmath>
@@ -15,7 +16,8 @@ namespace rtlab {
 
 /// Algebraic method: the quadratic formula on a t^2 + b t + c.
 template <class T>
-struct SphereAlgebraic {
+struct SphereAlgebraic : MethodDefaults<SphereAlgebraic<T>> {
+    using MethodDefaults<SphereAlgebraic<T>>::intersect;
     using Scalar = T;
     using Shape = Sphere<T>;
     using Prepared = PreparedSphere<T>;
@@ -31,11 +33,6 @@ struct SphereAlgebraic {
     static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
 
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
-    static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
-        return roots(p, ray, precompute(ray));
-    }
-
-    /// Same as roots(p, ray) with rd = precompute(ray).
     static std::optional<std::pair<T, T>> roots(const Prepared& p,
                                                 const Ray<T>& ray,
                                                 const RayData& rd) {
@@ -51,26 +48,11 @@ struct SphereAlgebraic {
         return std::pair<T, T>{(-b - s) / (T(2) * a), (-b + s) / (T(2) * a)};
     }
 
-    /// Same as intersect(p, ray) with rd = precompute(ray).
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& rd) {
         return detail::pick_root(roots(p, ray, rd), ray);
-    }
-
-    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// True when the sphere surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return intersect(p, ray, rd).has_value();
     }
 };
 

@@ -5,6 +5,7 @@
 // root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root; a = d.d
 // once per ray (precompute).
 
+#include "intersect/method.h"
 #include "intersect/sphere/sphere.h"
 
 #include <cmath>
@@ -16,7 +17,8 @@ namespace rtlab {
 
 /// Geometric method: vector to the centre, its projection on the ray, early rejects.
 template <class T>
-struct SphereGeometric {
+struct SphereGeometric : MethodDefaults<SphereGeometric<T>> {
+    using MethodDefaults<SphereGeometric<T>>::intersect;
     using Scalar = T;
     using Shape = Sphere<T>;
     using Prepared = PreparedSphere<T>;
@@ -32,11 +34,6 @@ struct SphereGeometric {
     static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
 
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
-    static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
-        return roots(p, ray, precompute(ray));
-    }
-
-    /// Same as roots(p, ray) with rd = precompute(ray).
     static std::optional<std::pair<T, T>> roots(const Prepared& p,
                                                 const Ray<T>& ray,
                                                 const RayData& rd) {
@@ -52,7 +49,7 @@ struct SphereGeometric {
         return std::pair<T, T>{(b - s) / a, (b + s) / a};
     }
 
-    /// Same as intersect(p, ray) with rd = precompute(ray).
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& rd) {
@@ -71,21 +68,6 @@ struct SphereGeometric {
         }
         const T s = std::sqrt(disc);
         return detail::pick_root(std::optional<std::pair<T, T>>{{(b - s) / a, (b + s) / a}}, ray);
-    }
-
-    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// True when the sphere surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return intersect(p, ray, rd).has_value();
     }
 };
 

@@ -4,6 +4,7 @@
 // Baker), roots by q = -(b + sign(b) sqrt(disc)), t0 = q/a, t1 = c/q. No epsilon. Cost: 3 dots
 // per test, plus a = d.d once per ray (precompute).
 
+#include "intersect/method.h"
 #include "intersect/sphere/sphere.h"
 
 #include <cmath>
@@ -15,7 +16,8 @@ namespace rtlab {
 
 /// Numerically stable method: perpendicular-distance discriminant and the stable root pair.
 template <class T>
-struct SphereStable {
+struct SphereStable : MethodDefaults<SphereStable<T>> {
+    using MethodDefaults<SphereStable<T>>::intersect;
     using Scalar = T;
     using Shape = Sphere<T>;
     using Prepared = PreparedSphere<T>;
@@ -31,11 +33,6 @@ struct SphereStable {
     static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
 
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
-    static std::optional<std::pair<T, T>> roots(const Prepared& p, const Ray<T>& ray) {
-        return roots(p, ray, precompute(ray));
-    }
-
-    /// Same as roots(p, ray) with rd = precompute(ray).
     static std::optional<std::pair<T, T>> roots(const Prepared& p,
                                                 const Ray<T>& ray,
                                                 const RayData& rd) {
@@ -58,26 +55,11 @@ struct SphereStable {
         return t0 <= t1 ? std::pair<T, T>{t0, t1} : std::pair<T, T>{t1, t0};
     }
 
-    /// Same as intersect(p, ray) with rd = precompute(ray).
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const RayData& rd) {
         return detail::pick_root(roots(p, ray, rd), ray);
-    }
-
-    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// True when the sphere surface is hit inside [tmin, tmax].
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with rd = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& rd) {
-        return intersect(p, ray, rd).has_value();
     }
 };
 

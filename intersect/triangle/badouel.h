@@ -16,7 +16,7 @@ namespace rtlab {
 
 /// Badouel's plane-then-projection ray/triangle test, templated on the scalar type.
 template <class T>
-struct Badouel {
+struct Badouel : MethodDefaults<Badouel<T>> {
     using Scalar = T;
     using Shape = Triangle<T>;
 
@@ -89,11 +89,6 @@ struct Badouel {
             return std::nullopt;
         }
         return PrimHit<T>{t, u, v};
-    }
-
-    /// True when intersect() would report a hit.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

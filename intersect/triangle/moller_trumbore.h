@@ -15,7 +15,7 @@ namespace rtlab {
 
 /// Möller–Trumbore ray/triangle test, templated on the scalar type.
 template <class T>
-struct MollerTrumbore : VertexTriangleMethod<T> {
+struct MollerTrumbore : VertexTriangleMethod<T>, MethodDefaults<MollerTrumbore<T>> {
     using typename VertexTriangleMethod<T>::Prepared;
 
     static constexpr std::string_view name = "moller_trumbore";
@@ -45,11 +45,6 @@ struct MollerTrumbore : VertexTriangleMethod<T> {
             return std::nullopt;
         }
         return PrimHit<T>{t, u, v};
-    }
-
-    /// True when intersect() would report a hit.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
     }
 };
 

@@ -47,7 +47,8 @@ struct WatertightRay {
 /// shared by two triangles are decided consistently (a float edge function is exact in sign once
 /// its zeros are redone in double); double has no wider fallback, a zero only adds hits.
 template <class T>
-struct Watertight : VertexTriangleMethod<T> {
+struct Watertight : VertexTriangleMethod<T>, MethodDefaults<Watertight<T>> {
+    using MethodDefaults<Watertight<T>>::intersect;
     using typename VertexTriangleMethod<T>::Prepared;
 
     /// The per-ray set-up: axis permutation and shear.
@@ -59,11 +60,6 @@ struct Watertight : VertexTriangleMethod<T> {
     static RayData precompute(const Ray<T>& ray) { return WatertightRay<T>::make(ray); }
 
     /// Hit with t in [ray.tmin, ray.tmax] and barycentrics u (p1), v (p2), or nullopt.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray, precompute(ray));
-    }
-
-    /// Same as intersect(p, ray) with r = precompute(ray).
     static std::optional<PrimHit<T>> intersect(const Prepared& p,
                                                const Ray<T>& ray,
                                                const WatertightRay<T>& r) {
@@ -97,16 +93,6 @@ struct Watertight : VertexTriangleMethod<T> {
             }
         }
         return finish<T>(u, v, w, az, bz, cz, ray);
-    }
-
-    /// True when intersect() would report a hit.
-    static bool occluded(const Prepared& p, const Ray<T>& ray) {
-        return intersect(p, ray).has_value();
-    }
-
-    /// Same as occluded(p, ray) with r = precompute(ray).
-    static bool occluded(const Prepared& p, const Ray<T>& ray, const RayData& r) {
-        return intersect(p, ray, r).has_value();
     }
 
 private:
