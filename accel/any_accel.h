@@ -65,7 +65,7 @@ struct AccelEntry {
 std::span<const AccelEntry> accel_registry();
 
 /// Parameter variants that reports run beside the rows' defaults as layouts of their own (the
-/// issue 12 benchmarks, the stability suite's leak cases): specs, not registry rows.
+/// targets benchmark suite, the stability suite's leak cases): specs, not registry rows.
 std::span<const std::string_view> accel_variants();
 
 /// The row called `name` (a bare name, no parameters), or nullptr.

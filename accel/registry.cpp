@@ -221,9 +221,10 @@ const ParamSpec leaves = choice_param("leaves",
                                       "slot-ordered data; ids: one primitive id at a time");
 
 // Leaves starting whole 4-slot groups of the SoA leaf data (accel/bvh/bvh.h align_leaf_slots):
-// session 13 measured bvh8 on the tessellated SF 4 (1.65M triangles, 20% more slots) shadow
-// 1.06x, diffuse 1.02-1.07x, primary 0.99-1.01x; analytic SF 4 primary 1.015x, diffuse 1.04x;
-// bvh:pair 1.00-1.035x (docs/results.md).
+// against packed leaves (`leaf_align=1`, `rtlab trace --threads 1 --repeat 9`), bvh8 on the
+// tessellated SF 4 (1.65M triangles, 20% more slots) traced shadow rays 1.06x as fast, diffuse
+// 1.02-1.07x, primary 0.99-1.01x; on the analytic SF 4 primary 1.015x, diffuse 1.04x; bvh:pair
+// 1.00-1.035x.
 const ParamSpec leaf_align = only_with(integer_param("leaf_align",
                                                      4,
                                                      1,
@@ -234,8 +235,9 @@ const ParamSpec leaf_align = only_with(integer_param("leaf_align",
                                        {"soa"});
 
 // Children larger box first: any-hit traversal visits them in slot order (accel/bvh/bvh.h
-// ChildOrder; session 25: bvh:pair 1.05-1.07x on the SF 4 mesh's shadow rays, 2% fewer nodes per
-// ray; bvh8 within noise; docs/results.md).
+// ChildOrder). Against `order=build` on the tessellated SF 4's shadow rays (`rtlab trace --any-hit
+// --threads 1 --repeat 9`): bvh:pair 1.05-1.07x as fast with 2% fewer nodes per ray, bvh8 within
+// noise.
 const ParamSpec child_order = choice_param("order",
                                            0,
                                            {"area", "build"},
@@ -254,9 +256,11 @@ ChildOrder child_order_of(const AccelSpec& s) {
     return s.value("order") == 0 ? ChildOrder::area : ChildOrder::build;
 }
 
-// The least-area collapse by default: the same build time as the greedy one (1.65M triangles,
-// 1 thread: bvh8 417 against 419 ms, bvh16 411 against 402), fewer node visits, and 0.99-1.16x
-// the greedy trees' speed on issue 12's rows (docs/results.md, issue 12, session 49).
+// The least-area collapse by default: the same build time as the greedy one (1.65M triangles, 1
+// thread: bvh8 417 against 419 ms, bvh16 411 against 402), fewer node visits, and 0.99-1.16x the
+// greedy trees' speed paired against Embree medium on the tessellated SF 4 and the analytic SF 4
+// and SF 5 flakes (`rtlab_bench --suite targets`; docs/results.md, "Structures: speed, memory,
+// build time (against Embree)").
 const ParamSpec collapse = choice_param("collapse",
                                         1,
                                         {"greedy", "sah"},
@@ -269,10 +273,11 @@ WideCollapse collapse_of(const AccelSpec& s) {
     return s.value("collapse") == 0 ? WideCollapse::greedy : WideCollapse::sah;
 }
 
-// Diagonal slabs beside the boxes (a 14-DOP per slot): on the SF 5 sphere flake's primary rays,
-// 22% fewer node visits and 39% fewer leaf visits than the boxes alone, 1.14x the speed; on the
-// tessellated flake 0.92-0.98x, so the boxes alone stay the default (docs/results.md, issue 12,
-// session 50).
+// Diagonal slabs beside the boxes (a 14-DOP per slot): on the SF 5 sphere flake's primary rays, 22%
+// fewer node visits and 39% fewer leaf visits than the boxes alone, 1.14x the speed; on the
+// tessellated flake 0.92-0.98x, so the boxes alone stay the default (bvh16 paired against Embree
+// medium, `rtlab_bench --suite targets`; docs/results.md, "Structures: speed, memory, build time
+// (against Embree)").
 const ParamSpec bounds = choice_param("bounds",
                                       0,
                                       {"aabb", "dop14"},
@@ -321,13 +326,14 @@ ParamSpec with_max(ParamSpec p, double value) {
     p.max = value;
     return p;
 }
-// The SAH builders (bvh:binned, bvh:pbinned, bvh:sweep) and the wide layouts' source trees
-// default to leaves of up to 8 with ct 4, not the Config's 4 and 1: a node visit costs about four
-// triangle tests here. The wide layouts' SIMD leaf kernel tests up to 8 triangles for about the
-// price of one, and sweeps/bvh8-leaves.json measured them 1.2-1.3x faster on the tessellated
-// flake (analytic spheres: unchanged), with leaf and node memory less than half; the binary
-// SAH rows traced SF 4 a median 1.08x (tessellated) and 1.14x (analytic) as fast as with 4 and 1,
-// and built the mesh in 25-45% less time (docs/results.md, issue 12, sessions 10 and 27).
+// The SAH builders (bvh:binned, bvh:pbinned, bvh:sweep) and the wide layouts' source trees default
+// to leaves of up to 8 with ct 4, not the Config's 4 and 1: a node visit costs about four triangle
+// tests here. The wide layouts' SIMD leaf kernel tests up to 8 triangles for about the price of
+// one, and sweeps/bvh8-leaves.json measured them 1.2-1.3x faster on the tessellated flake (analytic
+// spheres: unchanged), with leaf and node memory less than half; the binary SAH rows traced SF 4 a
+// median 1.08x (tessellated) and 1.14x (analytic) as fast as with 4 and 1 (`rtlab trace --threads 1
+// --repeat 5`, 42 alternating pairs), and built the mesh in 25-45% less time (docs/results.md,
+// "Structures: speed, memory, build time (against Embree)").
 const ParamSpec sah_max_leaf = with_default(max_leaf, 8);
 const ParamSpec sah_ct = with_default(bvh_ct, 4);
 // A layout row's source-tree parameters take effect only with the `from` builders that read them,
@@ -341,17 +347,19 @@ const ParamSpec from_ci = only_with(bvh_ci, "from", sah_builders);
 const ParamSpec from_morton_bits = only_with(morton_bits, "from", {"lbvh"});
 // The layouts with SoA leaves (bvh4, bvh8, bvh16, bvh8q, bvh:pair) build source trees that count
 // primitives in blocks of 4, the leaves' group (one 4-lane test, half of an 8-lane one): bvh8
-// traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust
-// 0.99-1.01x; analytic SF 4 1.00-1.02x); bvh:pair traced within noise (0.98-1.03x) and built
-// its source tree in 25-35% less time (docs/results.md, issue 12, session 28).
+// traced the SF 4 mesh 1.04x as fast as with 1, paired with Embree (watertight + robust 0.99-1.01x;
+// analytic SF 4 1.00-1.02x); bvh:pair traced within noise (0.98-1.03x) and built its source tree in
+// 25-35% less time (`rtlab_bench --suite targets` paired rows; docs/results.md, "Structures: speed,
+// memory, build time (against Embree)").
 const ParamSpec soa_block = only_with(with_default(sah_block, 4), "from", sah_builders);
 // A quantised node stores leaf counts in 16 bits.
 const ParamSpec qwide_max_leaf = with_max(sah_max_leaf, 65535);
-// The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1
-// on the tessellated flake (SoA leaves) and 1.03-1.08x on the analytic one (session 10); 32 bins,
-// leaves of up to 32 and ct 16 then ran 1.04-1.075x faster than that over 262,144 rays on the
-// tessellated SF 4 and 1.01-1.03x on the analytic SF 4/5, within 1% over the issue 12 bench's
-// 16,384, and build 10% faster (fewer nodes; session 14, docs/results.md).
+// The pair layout's source tree: leaves of up to 16 with ct 8 ran 1.2-1.35x faster than 4 and 1 on
+// the tessellated SF 4 (SoA leaves) and 1.03-1.08x on the analytic one; 32 bins, leaves of up to 32
+// and ct 16 then ran 1.04-1.075x faster than that over 262,144 rays on the tessellated SF 4 and
+// 1.01-1.03x on the analytic SF 4/5 (`rtlab trace --threads 1 --repeat 9`), within 1% over the
+// 16,384 of `rtlab_bench --suite targets`, and build 10% faster (fewer nodes; docs/results.md,
+// "Structures: speed, memory, build time (against Embree)").
 const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
 const ParamSpec pair_bins = with_default(from_bins, 32);
 const ParamSpec pair_ct = with_default(from_ct, 16);

@@ -25,16 +25,16 @@ constexpr std::string_view own_flags =
     "  --accel SPEC   trace and build benchmarks for this structure spec only, e.g.\n"
     "                 --accel 'bvh:binned,max_leaf=8' (repeatable; default: every registry row\n"
     "                 but brute, with default parameters; see rtlab list)\n"
-    "  --suite NAME   all (default: every suite below but issue12) or issue12 (issue 12's target\n"
-    "                 table: SF 4 tessellated flake with floor, SF 4 and SF 5 analytic, 1 and 2\n"
-    "                 threads, Embree medium and high; bench/report.py --suite issue12 writes\n"
-    "                 it into docs/results.md; with --quick sizes 2 and 3), grid2 (issue 16:\n"
-    "                 every row on the flake with its floor, the stadium and analytic spheres,\n"
-    "                 one thread, with cost_model, measured_cost and epo; builds at 1 and 2\n"
-    "                 threads; bench/report.py --suite grid2 writes it into docs/results.md) or\n"
-    "                 kdtree (issue 16's kd-tree targets: kdtree:sah against the binary BVHs,\n"
-    "                 interleaved in one process, one thread; bench/report_kdtree.py makes the\n"
-    "                 table)\n\n";
+    "  --suite NAME   all (default: every suite below but targets) or targets (the BVH layouts'\n"
+    "                 target table against Embree: SF 4 tessellated flake with floor, SF 4 and\n"
+    "                 SF 5 analytic, 1 and 2 threads, Embree medium and high; bench/report.py\n"
+    "                 --suite targets writes it into docs/results.md; with --quick sizes 2 and\n"
+    "                 3), grid2 (the two-level grid and the cost model: every row on the flake\n"
+    "                 with its floor, the stadium and analytic spheres, one thread, with\n"
+    "                 cost_model, measured_cost and epo; builds at 1 and 2 threads;\n"
+    "                 bench/report.py --suite grid2 writes it into docs/results.md) or kdtree\n"
+    "                 (the kd-tree's targets: kdtree:sah against the binary BVHs, interleaved\n"
+    "                 in one process, one thread; bench/report_kdtree.py makes the table)\n\n";
 }  // namespace
 
 bool rtlab::bench::quick_mode() {
@@ -68,9 +68,9 @@ int main(int argc, char** argv) {
                 quick = true;
             } else if (arg == "--suite" && i + 1 < argc) {
                 suite = argv[++i];
-                if (suite != "all" && suite != "issue12" && suite != "grid2" && suite != "kdtree") {
+                if (suite != "all" && suite != "targets" && suite != "grid2" && suite != "kdtree") {
                     throw std::invalid_argument(
-                        "--suite must be all, issue12, grid2 or kdtree, not '" + suite + "'");
+                        "--suite must be all, targets, grid2 or kdtree, not '" + suite + "'");
                 }
             } else if (arg == "--accel" && i + 1 < argc) {
                 specs.push_back(rtlab::parse_accel_spec(argv[++i]).canonical());
@@ -94,8 +94,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     argc = kept;
-    if (suite == "issue12") {
-        rtlab::bench::register_issue12_benchmarks();
+    if (suite == "targets") {
+        rtlab::bench::register_targets_benchmarks();
     } else if (suite == "grid2") {
         rtlab::bench::register_grid2_benchmarks();
     } else if (suite == "kdtree") {

@@ -1,4 +1,4 @@
-// The two-level grid's targets and the one cost model (`rtlab_bench --suite grid2`; issue 16),
+// The two-level grid's targets and the one cost model (`rtlab_bench --suite grid2`),
 // every row in one process, on the same primitives and rays, TBB limited to one thread:
 //   grid2/trace/<spec>/<scene>/<kind>/threads:1
 //       every registry row but brute (default parameters; --accel narrows the list) through

@@ -1,9 +1,10 @@
-"""Issue 16's grid2 block from `rtlab trace` runs instead of rtlab_bench (for a machine where the
-benchmark executable is not built): generates the scenes and ray sets, runs `rtlab trace
---threads 1 --stats` for every structure, scene and ray kind, interleaved over --rounds rounds
-(one process per run; Mrays/s is the median over the rounds), and writes the same block and
-plot as `report.py --suite grid2` (bench/report_grid2.py). Build rows come from the trace runs'
-build_ms (one thread, with the tracer's clip callback); there are no 2-thread build rows.
+"""The grid2 block (two-level grid and cost model) from `rtlab trace` runs instead of rtlab_bench
+(for a machine where the benchmark executable is not built): generates the scenes and ray sets,
+runs `rtlab trace --threads 1 --stats` for every structure, scene and ray kind, interleaved over
+--rounds rounds (one process per run; Mrays/s is the median over the rounds), and writes the
+same block and plot as `report.py --suite grid2` (bench/report_grid2.py). Build rows come from
+the trace runs' build_ms (one thread, with the tracer's clip callback); there are no 2-thread
+build rows.
 
 Usage: python3 bench/grid2_trace_table.py [--rtlab build/release/apps/rtlab] [--rounds 3]
            [--count 16384] [--accel SPEC]... [--out docs/results.md] [--plots docs/plots]

@@ -1,4 +1,4 @@
-// Issue 16's kd-tree targets (`rtlab_bench --suite kdtree`; bench/report_kdtree.py makes the
+// The kd-tree's targets (`rtlab_bench --suite kdtree`; bench/report_kdtree.py makes the
 // table). Every figure is taken side by side in one process, interleaved, so a loaded machine
 // slows all contenders alike:
 //   kdtree/trace/<scene>/<kind>: the contenders (kd_contenders(), or --accel) traced in turn on
@@ -37,7 +37,7 @@ namespace {
 using namespace rtlab;
 using namespace rtlab::bench;
 
-/// The structures compared: the kd-tree with perfect splits on and off, the session-5 kd-tree
+/// The structures compared: the kd-tree with perfect splits on and off, the earlier kd-tree
 /// traversal (t-value stack, one primitive id at a time) for the before/after, and the binary
 /// BVHs.
 std::vector<std::string> kd_contenders() {
@@ -194,7 +194,7 @@ void bm_build(benchmark::State& state, const std::string& scene, int threads) {
     const ClipFn clip = [&tris](std::uint32_t i, const Bounds3f& box) {
         return clip_shape_bounds(tris[i], box);
     };
-    // The kd-trees against the binned builders (the issue's reference is bvh:binned).
+    // The kd-trees against the binned builders (the kd-tree targets' reference is bvh:binned).
     std::vector<std::string> specs;
     // traversal= and leaves= do not change the tree: one kd row per build setting.
     std::set<std::string> kd_builds;

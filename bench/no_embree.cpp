@@ -3,4 +3,4 @@
 
 void rtlab::bench::register_embree_benchmarks() {}
 
-void rtlab::bench::register_issue12_embree_benchmarks() {}
+void rtlab::bench::register_targets_embree_benchmarks() {}

@@ -1,6 +1,6 @@
 #pragma once
-// Paired timing for issue 12's rows that compare two runs of the same work on a shared machine
-// (ours against Embree medium, one thread against two): the two sides alternate within each
+// Paired timing for the targets suite's rows that compare two runs of the same work on a shared
+// machine (ours against Embree medium, one thread against two): the two sides alternate within each
 // benchmark iteration, the order swapped from pair to pair, and the row reports the median of the
 // per-pair ratios with its quartiles. A load burst slows both halves of a pair, so the paired
 // ratio holds still where medians timed minutes apart drift.

@@ -18,17 +18,17 @@ cost along every swept parameter (e.g. max_leaf), to --out (the whole file) and 
 Every table and plot records the command, git revision, compiler and CPU. A benchmark family
 missing from the run is skipped with a note.
 
-With --suite issue12 it runs `rtlab_bench --suite issue12` instead and writes issue 12's target
-table (measure | target | measured ratio | status, per-structure tables, the headline) between
-`<!-- issue12:begin -->` and `<!-- issue12:end -->` (bench/report_issue12.py), leaving the rest
-of the file alone. With --suite grid2 it runs `rtlab_bench --suite grid2` and writes issue 16's
-two-level grid targets, build times and predicted-against-measured cost table between
-`<!-- grid2:begin -->` and `<!-- grid2:end -->` (bench/report_grid2.py), plus
-docs/plots/cost-model-scatter.png.
+With --suite targets it runs `rtlab_bench --suite targets` instead and writes the BVH layouts'
+target table against Embree (measure | target | measured ratio | status, per-structure tables,
+the headline) between `<!-- targets:begin -->` and `<!-- targets:end -->`
+(bench/report_targets.py), leaving the rest of the file alone. With --suite grid2 it runs
+`rtlab_bench --suite grid2` and writes the two-level grid's targets, build times and
+predicted-against-measured cost table between `<!-- grid2:begin -->` and `<!-- grid2:end -->`
+(bench/report_grid2.py), plus docs/plots/cost-model-scatter.png.
 
 Example: python3 bench/report.py --bench build/release/bench/rtlab_bench --quick \\
              --out docs/results.md --plots docs/plots
-         python3 bench/report.py --suite issue12 --out docs/results.md   (about 21 minutes idle)
+         python3 bench/report.py --suite targets --out docs/results.md   (about 30 minutes idle)
 Smoke test (synthetic data, no executable needed): python3 bench/report.py --self-test
 """
 import argparse
@@ -41,7 +41,7 @@ import tempfile
 import time
 
 import report_grid2
-import report_issue12
+import report_targets
 from report_common import import_pyplot, provenance, prov_line, load_rows, write_text
 from report_methods import SETS, MethodSections
 from report_structures import StructureSections
@@ -181,27 +181,27 @@ def self_test(plt):
          "aggregate_name": n, "ratio": v} for n, v in (("median", 1.9), ("min", 1.5))]})
     checks["aggregates kept"] = (agg["r"]["ratio"] == 1.9 and
                                  agg["r"]["aggregates"]["min"]["ratio"] == 1.5)
-    issue = "\n".join(report_issue12.section(report_issue12.synthetic_rows(), "prov"))
-    write_markdown(md, issue + "\n", report_issue12.BEGIN, report_issue12.END)
+    targets = "\n".join(report_targets.section(report_targets.synthetic_rows(), "prov"))
+    write_markdown(md, targets + "\n", report_targets.BEGIN, report_targets.END)
     text2 = open(md).read()
-    checks["issue12 table"] = ("| best rtlab layout / Embree medium, triangles, primary | >= 1.0x "
+    checks["targets table"] = ("| best rtlab layout / Embree medium, triangles, primary | >= 1.0x "
                                "| 0.667x | 0.52x [0.5, 0.55] | **below target** "
                                "(bvh:pair,from=pbinned) |" in text2 and
                                "| best binary BVH / Embree medium, primary | >= 0.5x | 0.667x | "
                                "0.52x [0.5, 0.55] | met" in text2 and
                                "| best binary BVH / Embree medium, shadow | >= 0.5x | 0.667x | - | "
                                "met" in text2)
-    checks["issue12 build row"] = ("bvh:pbinned), 1 thread / Embree medium build, same triangles | "
+    checks["targets build row"] = ("bvh:pbinned), 1 thread / Embree medium build, same triangles | "
                                    "<= 1.0x | 1x | 1.04x [1.01, 1.08] | **below target** |"
                                    in text2)
-    checks["issue12 scaling rows"] = (
+    checks["targets scaling rows"] = (
         "| build bvh:pbinned, 2 threads / 1 thread | >= 1.8x | 2x | 1.83x [1.81, 1.95] | met |"
         in text2 and "| trace embree:medium shadow, 2 threads / 1 thread (wall) | >= 1.8x | 2x | "
         "1.7x [1.45, 1.85] | **below target** |" in text2 and
         "| embree:medium | - | - | 1.7x [1.45, 1.85] | - |" in text2 and
         "3 repetitions of 7 pairs" in text2)
-    checks["issue12 keeps the main report"] = BEGIN in text2 and "### torus" in text2
-    checks["issue12 headline"] = "bvh      primary  best bvh:pair,from=pbinned" in text2
+    checks["targets keeps the main report"] = BEGIN in text2 and "### torus" in text2
+    checks["targets headline"] = "bvh      primary  best bvh:pair,from=pbinned" in text2
     # Outputs are never written through a symbolic link: one-line exit, the target untouched,
     # no temporary left.
     target, link = os.path.join(tmp, "target.md"), os.path.join(tmp, "link.md")
@@ -237,14 +237,14 @@ def parse_args():
                     "Benchmark's random interleaving, so a slow spell of a shared machine falls "
                     "on every row's repetitions alike instead of on a few rows)")
     ap.add_argument("--filter", default="", help="--benchmark_filter regex for rtlab_bench")
-    ap.add_argument("--suite", default="all", choices=["all", "issue12", "grid2"],
-                    help="issue12: run rtlab_bench --suite issue12 and write the target table; "
-                    "grid2: run --suite grid2 and write issue 16's grid and cost-model block and "
-                    "plot")
+    ap.add_argument("--suite", default="all", choices=["all", "targets", "grid2"],
+                    help="targets: run rtlab_bench --suite targets and write the BVH layouts' "
+                    "target table against Embree; grid2: run --suite grid2 and write the "
+                    "two-level grid and cost-model block and plot")
     ap.add_argument("--cpu", action="store_true",
-                    help="with --suite issue12: one-thread rows timed by CPU time (shared machine)")
+                    help="with --suite targets: one-thread rows timed by CPU time (shared machine)")
     ap.add_argument("--headline", action="store_true",
-                    help="with --suite issue12: also print the headline on stdout")
+                    help="with --suite targets: also print the headline on stdout")
     ap.add_argument("--json", help="read this benchmark JSON instead of running rtlab_bench")
     ap.add_argument("--save-json", help="also keep the JSON of the run here")
     ap.add_argument("--git", help="git revision the header names (default: this script's "
@@ -309,18 +309,18 @@ def bench_data(args):
 
 
 def write_report(args, data, prov, plt):
-    """Writes the block of --suite into --out: issue 12's or issue 16's table, or the main report
-    and its plots."""
+    """Writes the block of --suite into --out: the targets table, the grid2 block, or the main
+    report and its plots."""
     wall = prov["wall"]
-    if args.suite == "issue12":
+    if args.suite == "targets":
         rows = load_rows(data)
-        lines = report_issue12.section(rows, prov_line(prov) + f" Wall time of the run: {wall}.",
+        lines = report_targets.section(rows, prov_line(prov) + f" Wall time of the run: {wall}.",
                                        args.cpu)
-        write_markdown(args.out, "\n".join(lines) + "\n", report_issue12.BEGIN,
-                       report_issue12.END)
+        write_markdown(args.out, "\n".join(lines) + "\n", report_targets.BEGIN,
+                       report_targets.END)
         if args.headline:
-            print("\n".join(report_issue12.Issue12(rows, args.cpu).headline()))
-        print(f"report: wrote the issue12 table into {args.out}", file=sys.stderr)
+            print("\n".join(report_targets.Targets(rows, args.cpu).headline()))
+        print(f"report: wrote the targets table into {args.out}", file=sys.stderr)
         return 0
     if args.suite == "grid2":
         lines = report_grid2.section(load_rows(data),

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 16's kd-tree table from `rtlab_bench --suite kdtree` JSON (bench/kdtree_bench.cpp).
+"""The kd-tree table from `rtlab_bench --suite kdtree` JSON (bench/kdtree_bench.cpp).
 
 Prints Markdown: per scene and ray kind, Mrays/s, nodes/ray and prims/ray of every contender with
 the kd-tree rows' ratio to the best binary BVH; then build times with the kd-tree rows' ratio to
@@ -32,7 +32,7 @@ def split_counters(bench):
 
 def main():
     parser = argparse.ArgumentParser(
-        description="Issue 16's kd-tree table (Markdown, on stdout) from rtlab_bench --suite "
+        description="The kd-tree table (Markdown, on stdout) from rtlab_bench --suite "
         "kdtree JSON output.")
     parser.add_argument("json", help="the --benchmark_out file of rtlab_bench --suite kdtree")
     args = parser.parse_args()

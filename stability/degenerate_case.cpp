@@ -1,9 +1,9 @@
-// Axis-aligned and degenerate rays (issue 7): zero direction components on one and two axes,
-// origins exactly on the scene box's faces or on split planes of the built structures (kd-tree
-// splits, BVH node faces, grid cell walls), denormal direction components: each structure (robust
-// and plain) must give the same closest hit as a box-free loop over every triangle (watertight
-// method, float). Invalid rays (zero or denormal-only direction, NaN or inf anywhere, tmin > tmax)
-// must be rejected before any node is visited (TraversalStats::nodes stays 0) and never hit.
+// Axis-aligned and degenerate rays: zero direction components on one and two axes, origins exactly
+// on the scene box's faces or on split planes of the built structures (kd-tree splits, BVH node
+// faces, grid cell walls), denormal direction components: each structure (robust and plain) must
+// give the same closest hit as a box-free loop over every triangle (watertight method, float).
+// Invalid rays (zero or denormal-only direction, NaN or inf anywhere, tmin > tmax) must be rejected
+// before any node is visited (TraversalStats::nodes stays 0) and never hit.
 // Scene: the intgrid mesh at SF 2 (closed cube [-2, 2]^3, 192 triangles).
 #include "accel/any_accel.h"
 #include "datasets_gen/generators.h"

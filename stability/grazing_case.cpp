@@ -1,8 +1,8 @@
-// Grazing rays (issue 7): rays nearly tangent to spheres, nearly parallel to triangles' planes
-// and nearly parallel to box faces, judged by exact rational arithmetic (CGAL::Gmpq) on the very
-// float ray and shape traced; false hits, false misses and relative t error per method and
-// precision, with ns per test. Nearness is log-uniform: a relative offset or angle in
-// [1e-8, 1e-1] of either sign, plus exact zeros for boxes; half the box rays pass near an edge.
+// Grazing rays: rays nearly tangent to spheres, nearly parallel to triangles' planes and nearly
+// parallel to box faces, judged by exact rational arithmetic (CGAL::Gmpq) on the very float ray and
+// shape traced; false hits, false misses and relative t error per method and precision, with ns per
+// test. Nearness is log-uniform: a relative offset or angle in [1e-8, 1e-1] of either sign, plus
+// exact zeros for boxes; half the box rays pass near an edge.
 #include "intersect/box/methods.h"
 #include "intersect/sphere/methods.h"
 #include "intersect/triangle/methods.h"

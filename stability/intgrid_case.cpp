@@ -1,8 +1,8 @@
-// Integer grid (issue 7): the `intgrid` mesh (closed cube surface on the integer lattice, SF 3:
-// [-4, 4]^3, 768 triangles) hit by axis-aligned rays whose origins lie on the grid lines, so each
-// ray passes exactly through shared edges (one transverse coordinate an integer), vertices (both)
-// or square diagonals (the shared edge of a square's two triangles). Half start inside the cube,
-// half outside aimed at it: every ray must hit. Every triangle method x structure x robust on/off.
+// Integer grid: the `intgrid` mesh (closed cube surface on the integer lattice, SF 3: [-4, 4]^3,
+// 768 triangles) hit by axis-aligned rays whose origins lie on the grid lines, so each ray passes
+// exactly through shared edges (one transverse coordinate an integer), vertices (both) or square
+// diagonals (the shared edge of a square's two triangles). Half start inside the cube, half outside
+// aimed at it: every ray must hit. Every triangle method x structure x robust on/off.
 #include "datasets_gen/generators.h"
 #include "stability/case_util.h"
 #include "stability/cases.h"

@@ -1,10 +1,10 @@
-// Structures (issue 7): every structure of the registry, robust and plain, against a box-free
-// loop over every primitive with the same method (a disagreement in hit/miss, or a t more than
-// 1e-4 relative away, is a failure; closer t are coplanar ties and only reported),
-// on four scenes: a constructed "hit beyond the first cell or leaf" scene (a long slanted
-// triangle whose box fills the first cells and leaves, hit far away, in front of which a small
-// square is hit first; six orientations), the `stadium` and `scales` stress scenes, and
-// axis-aligned squares on integer planes (primitives exactly on split planes).
+// Structures: every structure of the registry, robust and plain, against a box-free loop over every
+// primitive with the same method (a disagreement in hit/miss, or a t more than 1e-4 relative away,
+// is a failure; closer t are coplanar ties and only reported), on four scenes: a constructed "hit
+// beyond the first cell or leaf" scene (a long slanted triangle whose box fills the first cells and
+// leaves, hit far away, in front of which a small square is hit first; six orientations), the
+// `stadium` and `scales` stress scenes, and axis-aligned squares on integer planes (primitives
+// exactly on split planes).
 #include "datasets_gen/generators.h"
 #include "intersect/sphere/stable.h"
 #include "intersect/triangle/watertight.h"

@@ -1,6 +1,6 @@
-// Watertightness (pbrt's "Triangle, Watertight" idea, case 1 of issue 7): rays from inside a
-// closed, vertex-perturbed sphere mesh, in random directions and aimed exactly at vertices and
-// shared edges, must all hit. Every triangle method x every structure x robust on/off, float,
+// Watertightness (pbrt's "Triangle, Watertight" idea, the stability suite's first case): rays from
+// inside a closed, vertex-perturbed sphere mesh, in random directions and aimed exactly at vertices
+// and shared edges, must all hit. Every triangle method x every structure x robust on/off, float,
 // traced through SceneTracer (the path `rtlab trace` takes); a ray that hits nothing is a leak.
 #include "intersect/triangle/methods.h"
 #include "intersect/triangle/sphere_mesh.h"

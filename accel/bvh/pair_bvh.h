@@ -129,8 +129,9 @@ private:
         const PairNode& n, const SlabRay<float>& sr, float tmin, float tmax, float tn[2]);
 
     // hit_fn takes one primitive id (ByRange false) or a whole leaf as (first slot, count). One
-    // function on purpose, as wide_traverse_as: a shared leaf step measured 3-8% slower on
-    // shadow rays (docs/results.md, session 40).
+    // function on purpose, as wide_traverse_as: a leaf step shared with the other traversals
+    // measured 3-8% slower on the tessellated SF 4's shadow rays (`rtlab trace --threads 1
+    // --repeat 9`, 4 alternating rounds).
     template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
     bool traverse(R& ray, F& hit_fn, S& stats) const {
         if (!is_valid(ray)) {
@@ -171,8 +172,9 @@ private:
                 if (mask == 3) {
                     // Any hit: child 0 (the larger box) first, as the wide traversal. Closest
                     // hit: the ray's side of the split, as many nodes per ray as distance order
-                    // on the SF 4 mesh and faster (docs/results.md, session 25); taking the
-                    // side for any hit too cost 3% against child 0.
+                    // on the tessellated SF 4 and faster (primary rays 2-7% in 6 of 7 rounds of
+                    // `rtlab trace --threads 1 --repeat 9`); taking the side for any hit too cost
+                    // 3% against child 0.
                     const int near =
                         IsAnyHit ? 0 : static_cast<int>(((neg >> n.axis()) ^ n.flipped()) & 1u);
                     assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");

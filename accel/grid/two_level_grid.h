@@ -23,8 +23,9 @@ namespace rtlab {
 /// Build parameters of the two-level grid.
 struct TwoLevelGridConfig {
     float top_density = 0.0625f;  ///< lambda_1: top cells per primitive (Woo's rule)
-    /// lambda_2: cells per primitive of each sub-grid. 1 beat 0.5, 2 and 4 on the flake with its
-    /// floor and in the stadium, every ray kind (sweeps/grid-densities.json, docs/results.md).
+    /// lambda_2: cells per primitive of each sub-grid. 1 beat 2 and 4 on the flake with its floor
+    /// and in the stadium, every ray kind, and 0.5 on all but the stadium's diffuse rays
+    /// (sweeps/grid-densities.json; docs/results.md, "The two-level grid and the kd-tree").
     float leaf_density = 1.0f;
     std::uint32_t max_res = 256;  ///< upper bound on the resolution of either level per axis
 };

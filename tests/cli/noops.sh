@@ -1,5 +1,5 @@
-# Options that would silently do nothing are errors (issue 15), and misleading messages stay
-# fixed. Sourced by tests/cli_test.sh.
+# Options that would silently do nothing are errors, and misleading messages stay fixed. Sourced by
+# tests/cli_test.sh.
 noop=$tmp/noop
 mkdir -p "$noop"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$noop/tri.obj"

@@ -1,5 +1,5 @@
-# Output files are never clobbered when they are not ours, and interrupts leave nothing behind
-# (issue 15). Sourced by tests/cli_test.sh: uses expect_ok, expect_error, $RTLAB, $tmp, fail.
+# Output files are never clobbered when they are not ours, and interrupts leave nothing behind.
+# Sourced by tests/cli_test.sh: uses expect_ok, expect_error, $RTLAB, $tmp, fail.
 out_dir=$tmp/outputs
 mkdir -p "$out_dir"
 expect_ok "outputs: scene" gen flake --size 1 -o "$out_dir/s.json"

@@ -1,5 +1,5 @@
 # rtlab stability contracts (sourced by tests/cli_test.sh: uses expect_ok, expect_error, $RTLAB,
-# $tmp). The watertightness check of issue 7: `rtlab trace --method watertight --robust` loses no
+# $tmp). The watertightness check: `rtlab trace --method watertight --robust` loses no
 # ray from inside a closed perturbed sphere, with every structure.
 expect_ok "stability help" stability --help
 expect_ok "stability list" stability --list

@@ -1,12 +1,12 @@
-// Embree's side of issue 12's target measurements (`rtlab_bench --suite issue12`; ours in
-// issue12_bench.cpp), on the same scenes and rays:
-//   issue12/trace/embree:<quality>/default/plain/<scene>/<kind>/threads:<k>  rtcIntersect1 /
+// Embree's side of the BVH layouts' target measurements (`rtlab_bench --suite targets`; ours in
+// targets_bench.cpp), on the same scenes and rays:
+//   targets/trace/embree:<quality>/default/plain/<scene>/<kind>/threads:<k>  rtcIntersect1 /
 //       rtcOccluded1 per ray, TBB limited to k threads. Counters: rays/s, build_ms, prims,
 //       bytes/prim (everything Embree allocated for the scene, geometry copies included, from
 //       its memory monitor), agree and agree_hits (embree_agreement on the first 1000 rays).
-//   issue12/build/embree:<quality>/<scene>/threads:<k>  rtcCommitScene of the mesh scene's
+//   targets/build/embree:<quality>/<scene>/threads:<k>  rtcCommitScene of the mesh scene's
 //       triangles; build_ms is the median of the timed commits.
-//   issue12/paired/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:1  our tracer for the
+//   targets/paired/<spec>/<methods>/<plain|robust>/<scene>/<kind>/threads:1  our tracer for the
 //       row (the wide layouts and bvh:pair) against Embree medium, one thread, timed in
 //       alternation: each pair is one sample of ours and one of Embree's (order swapped from
 //       pair to pair), each sample one untimed pass over the rays, then enough timed passes to
@@ -15,12 +15,12 @@
 //       pairs, passes; reported as aggregates (median, min, max, ...). A load burst on a shared
 //       machine slows both halves of a pair, so the ratio holds still where separate medians
 //       drift.
-//   issue12/paired_build/<spec>/<scene>/threads:1  our build of the row (bvh:pbinned and the
+//   targets/paired_build/<spec>/<scene>/threads:1  our build of the row (bvh:pbinned and the
 //       wide layouts) from the triangle bounds against Embree medium's rtcCommitScene (geometry
 //       upload untimed), one thread, in alternation (order swapped from pair to pair). 3
 //       repetitions of 5 pairs. Counters: ratio (median over the pairs of our time / Embree's:
 //       lower is faster), ratio_q1, ratio_q3, pairs; aggregates as above.
-//   issue12/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
+//   targets/scaling/embree:<quality>/<build|kind>/<scene>/threads:2  Embree's commit (both
 //       qualities) or medium's trace of the mesh scene with TBB limited to one thread and to two,
 //       in alternation (bench/paired.h); ratio is the median speed-up, as for our rows.
 #include "bench/benchmarks.h"
@@ -43,7 +43,7 @@ namespace {
 using namespace rtlab;
 using namespace rtlab::bench;
 
-constexpr RayKind issue_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
+constexpr RayKind target_kinds[] = {RayKind::primary, RayKind::shadow, RayKind::diffuse};
 
 void bm_trace(
     benchmark::State& state, EmbreeQuality q, std::string scene, RayKind kind, int threads) {
@@ -75,7 +75,7 @@ void bm_build(benchmark::State& state, EmbreeQuality q, std::string scene, int t
     state.counters["bytes/prim"] = bytes / prims;
 }
 
-void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
+void bm_paired(benchmark::State& state, TargetsKey key, RayKind kind) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const BuiltScene* built = nullptr;
     try {
@@ -84,7 +84,7 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
         state.SkipWithError(ex.what());
         return;
     }
-    const SceneTracer& t = issue12_tracer(key);
+    const SceneTracer& t = targets_tracer(key);
     const std::vector<Rayf>& rays = bench_scene(key.scene).rays.at(kind);
     TracePass mine(rays.size());
     EmbreePass embree(rays.size());
@@ -93,7 +93,7 @@ void bm_paired(benchmark::State& state, Issue12Key key, RayKind kind) {
     // As many passes as make the slower side's sample last the minimum (the same count for both,
     // so a pair compares equal work).
     const double one = std::max(seconds_of(1, ours), seconds_of(1, theirs));
-    const int passes = passes_for(issue12_min_sample(), one);
+    const int passes = passes_for(targets_min_sample(), one);
     std::vector<double> ratios;
     for (const PairTimes& p : alternate(
              state, [&] { return seconds_of(passes, ours); },
@@ -139,13 +139,13 @@ void bm_scaling_trace(benchmark::State& state, std::string scene, RayKind kind) 
     }
     const std::vector<Rayf>& rays = bench_scene(scene).rays.at(kind);
     EmbreePass embree(rays.size());
-    time_scaling_passes(state, issue12_min_sample(),
+    time_scaling_passes(state, targets_min_sample(),
                         [&] { embree.run(*built->scene, rays, kind); });
 }
 
 void register_paired(const std::vector<std::string>& scenes, const std::string& mesh) {
-    for (const std::string& spec : issue12_layout_specs()) {
-        if (!issue12_paired_layout(spec)) {
+    for (const std::string& spec : targets_layout_specs()) {
+        if (!targets_paired_layout(spec)) {
             continue;
         }
         for (const std::string& scene : scenes) {
@@ -153,13 +153,13 @@ void register_paired(const std::vector<std::string>& scenes, const std::string& 
                 if (wt && scene != mesh) {
                     continue;
                 }
-                for (RayKind k : issue_kinds) {
-                    const std::string name = "issue12/paired/" + spec +
+                for (RayKind k : target_kinds) {
+                    const std::string name = "targets/paired/" + spec +
                                              (wt ? "/watertight/robust/" : "/default/plain/") +
                                              scene + "/" + std::string(to_string(k)) + "/threads:1";
-                    issue12_paired_timing(
+                    targets_paired_timing(
                         benchmark::RegisterBenchmark(name.c_str(), bm_paired,
-                                                     Issue12Key{scene, spec, wt}, k),
+                                                     TargetsKey{scene, spec, wt}, k),
                         7);
                 }
             }
@@ -169,24 +169,24 @@ void register_paired(const std::vector<std::string>& scenes, const std::string& 
 
 }  // namespace
 
-void rtlab::bench::register_issue12_embree_benchmarks() {
-    const std::string mesh = issue12_mesh_scene();
+void rtlab::bench::register_targets_embree_benchmarks() {
+    const std::string mesh = targets_mesh_scene();
     std::vector<std::string> scenes{mesh};
-    for (const std::string& s : issue12_sphere_scenes()) {
+    for (const std::string& s : targets_sphere_scenes()) {
         scenes.push_back(s);
     }
     for (const EmbreeQuality& q : embree_qualities) {
         const std::string accel = std::string("embree:") + q.name;
         for (const std::string& scene : scenes) {
-            for (RayKind k : issue_kinds) {
+            for (RayKind k : target_kinds) {
                 for (int threads : {1, 2}) {
                     if (threads == 2 && scene != mesh) {
                         continue;
                     }
-                    const std::string name = "issue12/trace/" + accel + "/default/plain/" + scene +
+                    const std::string name = "targets/trace/" + accel + "/default/plain/" + scene +
                                              "/" + std::string(to_string(k)) +
                                              "/threads:" + std::to_string(threads);
-                    issue12_timing(
+                    targets_timing(
                         benchmark::RegisterBenchmark(name.c_str(), bm_trace, q, scene, k, threads)
                             ->UseRealTime());
                 }
@@ -194,7 +194,7 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
         }
         for (int threads : {1, 2}) {
             const std::string name =
-                "issue12/build/" + accel + "/" + mesh + "/threads:" + std::to_string(threads);
+                "targets/build/" + accel + "/" + mesh + "/threads:" + std::to_string(threads);
             benchmark::RegisterBenchmark(name.c_str(), bm_build, q, mesh, threads)
                 ->Unit(benchmark::kMillisecond)
                 ->UseManualTime()
@@ -204,25 +204,25 @@ void rtlab::bench::register_issue12_embree_benchmarks() {
     register_paired(scenes, mesh);
     for (const EmbreeQuality& q : embree_qualities) {
         const std::string name =
-            std::string("issue12/scaling/embree:") + q.name + "/build/" + mesh + "/threads:2";
-        issue12_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, q, mesh),
+            std::string("targets/scaling/embree:") + q.name + "/build/" + mesh + "/threads:2";
+        targets_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_build, q, mesh),
                               7);
     }
-    for (RayKind k : issue_kinds) {
-        const std::string name = "issue12/scaling/embree:medium/" + std::string(to_string(k)) +
+    for (RayKind k : target_kinds) {
+        const std::string name = "targets/scaling/embree:medium/" + std::string(to_string(k)) +
                                  "/" + mesh + "/threads:2";
-        issue12_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_trace, mesh, k),
+        targets_paired_timing(benchmark::RegisterBenchmark(name.c_str(), bm_scaling_trace, mesh, k),
                               7);
     }
     // The builds the target table sets against Embree medium's: the binary default and the wide
     // layouts' (the table shows the one whose trace is fastest).
-    for (const std::string& spec : issue12_layout_specs()) {
-        const bool wide = issue12_paired_layout(spec) && !spec.starts_with("bvh:pair,");
+    for (const std::string& spec : targets_layout_specs()) {
+        const bool wide = targets_paired_layout(spec) && !spec.starts_with("bvh:pair,");
         if (!spec.starts_with("bvh:pbinned,") && !wide) {
             continue;
         }
-        const std::string name = "issue12/paired_build/" + spec + "/" + mesh + "/threads:1";
-        issue12_paired_timing(
+        const std::string name = "targets/paired_build/" + spec + "/" + mesh + "/threads:1";
+        targets_paired_timing(
             benchmark::RegisterBenchmark(name.c_str(), bm_paired_build, spec, mesh), 5);
     }
 }
