@@ -68,10 +68,27 @@ const ParamSpec threads = build_only(
                   0,
                   256,
                   "TBB threads of the build (0: all allowed); the tree is the same for any"));
-const ParamSpec from = choice_param("from",
-                                    0,
-                                    {"pbinned", "binned", "sweep", "lbvh", "median", "sbvh"},
-                                    "the binary BVH builder whose tree is converted");
+// The binary BVH builders a layout row converts (`from=`), in choice order (the first is the
+// default); each is also a row of its own, "bvh:" + name (a test checks the two agree).
+struct BinaryBuilder {
+    std::string_view name;
+    Bvh (*build)(const BuildInput&, const Bvh::Config&, std::uint32_t);
+};
+constexpr BinaryBuilder binary_builders[] = {
+    {"pbinned", &build_bvh_binned_parallel}, {"binned", &build_bvh_binned_sah},
+    {"sweep", &build_bvh_sweep_sah},         {"lbvh", &build_bvh_lbvh},
+    {"median", &build_bvh_median},           {"sbvh", &build_bvh_sbvh}};
+
+std::vector<std::string_view> binary_builder_names() {
+    std::vector<std::string_view> names;
+    for (const BinaryBuilder& b : binary_builders) {
+        names.push_back(b.name);
+    }
+    return names;
+}
+
+const ParamSpec from = choice_param(
+    "from", 0, binary_builder_names(), "the binary BVH builder whose tree is converted");
 const ParamSpec kd_ct = real_param("ct",
                                    static_cast<double>(kd_default.traversal_cost),
                                    0,
@@ -184,22 +201,8 @@ TwoLevelGridConfig grid2_config(const AccelSpec& s) {
 
 /// The binary tree a layout row converts: built by the builder its `from` parameter names.
 Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
-    const Bvh::Config c = bvh_config(s);
-    const std::uint32_t t = threads_of(s);
-    switch (static_cast<int>(s.value("from"))) {
-    case 0:
-        return build_bvh_binned_parallel(in, c, t);
-    case 1:
-        return build_bvh_binned_sah(in, c, t);
-    case 2:
-        return build_bvh_sweep_sah(in, c, t);
-    case 3:
-        return build_bvh_lbvh(in, c, t);
-    case 4:
-        return build_bvh_median(in, c, t);
-    default:
-        return build_bvh_sbvh(in, c, t);
-    }
+    const auto i = static_cast<std::size_t>(s.value("from"));
+    return binary_builders[i].build(in, bvh_config(s), threads_of(s));
 }
 
 /// A row's build function: the builder B called with the Config the spec describes.

@@ -5,6 +5,7 @@
 #include "accel/any_accel.h"
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
+#include "support/registry_lists.h"
 
 #include <catch2/catch.hpp>
 
@@ -12,6 +13,8 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 namespace rtlab {
 namespace {
@@ -142,6 +145,27 @@ TEST_CASE("parameter kinds parse, check and print their values", "[accel][spec]"
     CHECK_THROWS_WITH(from.parse("s", "lbvh"),
                       Catch::Contains("from must be one of median|binned|sweep, not 'lbvh'") &&
                           Catch::Contains("--accel 's'"));
+}
+
+TEST_CASE("from= lists exactly the rows that build a binary BVH", "[accel][spec]") {
+    const std::vector<std::string> from = test::from_choices();
+    const test::Soup soup = test::random_soup(test::SoupKind::triangles, 5, 50);
+    std::size_t binary_rows = 0;
+    for (const AccelEntry& e : accel_registry()) {
+        CAPTURE(e.name);
+        for (const ParamSpec& p : e.params) {
+            if (p.key == "from") {  // every layout row converts the same builders
+                CHECK(std::vector<std::string>(p.choices.begin(), p.choices.end()) == from);
+            }
+        }
+        if (std::holds_alternative<Bvh>(build_accel(e.name, soup.input()))) {
+            ++binary_rows;
+            const std::string name(e.name);
+            REQUIRE(name.rfind("bvh:", 0) == 0);
+            CHECK(std::find(from.begin(), from.end(), name.substr(4)) != from.end());
+        }
+    }
+    CHECK(binary_rows == from.size());
 }
 
 TEST_CASE("max_leaf reaches the builder: other trees, same answers", "[accel][spec]") {

@@ -5,6 +5,7 @@
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 #include "support/bvh_checks.h"
+#include "support/registry_lists.h"
 
 #include <catch2/catch.hpp>
 
@@ -18,7 +19,7 @@
 namespace rtlab {
 
 TEST_CASE("pair layout keeps the source tree: leaves, boxes and answers", "[accel][bvh]") {
-    const std::string from = GENERATE("pbinned", "binned", "sweep", "lbvh", "median");
+    const std::string from = GENERATE(from_range(test::from_choices()));
     const auto count = GENERATE(0u, 1u, 2u, 5u, 1000u);
     CAPTURE(from, count);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, 3, count);

@@ -10,6 +10,7 @@
 #include "support/accel_checks.h"
 #include "support/accel_fixtures.h"
 #include "support/bvh_checks.h"
+#include "support/registry_lists.h"
 
 #include <catch2/catch.hpp>
 
@@ -267,7 +268,7 @@ TEST_CASE("wide BVHs collapse every binary builder into valid, shallower trees",
     // The binary tree's settings (the wide rows default to larger leaves, Ct and blocks; the
     // median and LBVH rows have no SAH settings).
     const std::string_view source = "max_leaf=4,ct=1,block=1";
-    for (const std::string from : {"binned", "sweep", "median", "lbvh"}) {
+    for (const std::string& from : test::from_choices()) {
         const AnyAccel binary = build_accel(test::spec_with("bvh:" + from, source), soup.input());
         const AccelInfo bi = accel_info(binary);
         for (const char* wide : {"bvh4", "bvh8", "bvh16", "bvh8q"}) {
