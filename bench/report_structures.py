@@ -48,7 +48,8 @@ def scaling_series(build, traces):
         # scenes are not points of one curve.
         family = re.sub(r"[_-]?\d+$", "", "/".join(parts[2:-1]))
         trace.setdefault((parts[1], family, parts[-1]), []).append((n, 1e9 / rps))
-    trace = {k: v for k, v in trace.items() if len({n for n, _ in v}) >= 2}
+    # Two sizes give a line through two noisy points, not an exponent: a series needs three.
+    trace = {k: v for k, v in trace.items() if len({n for n, _ in v}) >= 3}
     return series, trace
 
 
@@ -145,7 +146,7 @@ class StructureSections:
                  "(1 = linear; n log n fits k slightly above 1 over a short range).", "")
         if not trace:
             self.add("_Trace time against primitive count: no trace benchmark with a `prims` "
-                     "counter over two or more sizes in this run._", "")
+                     "counter over three or more sizes in this run._", "")
         self.add("| family | series | sizes | exponent k | time at largest n |",
                  "|---|---|---:|---:|---:|")
         self._scaling_figure(series, trace)
