@@ -367,6 +367,14 @@ const ParamSpec pair_max_leaf = with_default(max_leaf, 32);
 const ParamSpec pair_bins = with_default(from_bins, 32);
 const ParamSpec pair_ct = with_default(from_ct, 16);
 
+// Rows that take the same parameters: the binned SAH builders, the wide layouts, the kd-trees.
+const std::vector<ParamSpec> binned_params{sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads};
+const std::vector<ParamSpec> kd_params{kd_ct,   kd_ci,   empty_bonus,  max_depth, min_leaf,
+                                       perfect, threads, kd_traversal, kd_leaves};
+const std::vector<ParamSpec> wide_params{
+    from,      leaves,  leaf_align, child_order, collapse,         bounds, sah_max_leaf,
+    from_bins, from_ct, from_ci,    soa_block,   from_morton_bits, threads};
+
 AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
     return BruteForce::build(in);
 }
@@ -377,15 +385,12 @@ const AccelEntry registry_rows[] = {
      "binary BVH, object median on the largest centroid axis",
      {max_leaf, threads},
      &threaded_row<build_bvh_median, bvh_config>},
-    {"bvh:binned",
-     "binary BVH, binned SAH (Wald 2007)",
-     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
+    {"bvh:binned", "binary BVH, binned SAH (Wald 2007)", binned_params,
      &threaded_row<build_bvh_binned_sah, bvh_config>},
     {"bvh:pbinned",
      "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n primitives), "
      "parallel with TBB, deterministic",
-     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
-     &threaded_row<build_bvh_binned_parallel, bvh_config>},
+     binned_params, &threaded_row<build_bvh_binned_parallel, bvh_config>},
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
      "of the split first",
@@ -399,28 +404,19 @@ const AccelEntry registry_rows[] = {
     {"bvh:sbvh",
      "binary BVH, binned SAH with spatial splits (Stich et al. 2009; 2 bins or more): a primitive "
      "may be cut into several leaves; parallel with TBB, deterministic",
-     {sah_max_leaf, bins, sah_ct, bvh_ci, sah_block, threads},
-     &threaded_row<build_bvh_sbvh, bvh_config>},
+     binned_params, &threaded_row<build_bvh_sbvh, bvh_config>},
     {"bvh:lbvh",
      "binary BVH, Morton-code radix tree (Karras 2012)",
      {max_leaf, morton_bits, threads},
      &threaded_row<build_bvh_lbvh, bvh_config>},
-    {"bvh4",
-     "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
-      from_ci, soa_block, from_morton_bits, threads},
-     &layout_row<&collapse_row<4>>},
-    {"bvh8",
-     "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
-      from_ci, soa_block, from_morton_bits, threads},
-     &layout_row<&collapse_row<8>>},
+    {"bvh4", "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
+     wide_params, &layout_row<&collapse_row<4>>},
+    {"bvh8", "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
+     wide_params, &layout_row<&collapse_row<8>>},
     {"bvh16",
      "16-wide BVH collapsed from a binary build by surface area, one 16-lane node test (AVX-512; "
      "two 8-lane ones on AVX2)",
-     {from, leaves, leaf_align, child_order, collapse, bounds, sah_max_leaf, from_bins, from_ct,
-      from_ci, soa_block, from_morton_bits, threads},
-     &layout_row<&collapse_row<16>>},
+     wide_params, &layout_row<&collapse_row<16>>},
     {"bvh8q",
      "bvh8 with each node's child boxes quantised to 8 bits per plane on a per-node grid, rounded "
      "outward (128-byte nodes instead of 256)",
@@ -429,11 +425,9 @@ const AccelEntry registry_rows[] = {
      &layout_row<&quantize_row>},
     {"kdtree:sah",
      "kd-tree, O(N log N) SAH event sweep (Wald & Havran 2006), parallel with TBB, deterministic",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},
-     &row<build_kdtree_sah, kd_config>},
+     kd_params, &row<build_kdtree_sah, kd_config>},
     {"kdtree:median",
-     "kd-tree, spatial median of the longest axis, SAH termination, parallel with TBB",
-     {kd_ct, kd_ci, empty_bonus, max_depth, min_leaf, perfect, threads, kd_traversal, kd_leaves},
+     "kd-tree, spatial median of the longest axis, SAH termination, parallel with TBB", kd_params,
      &row<build_kdtree_median, kd_config>},
     {"grid:uniform",
      "uniform grid, Woo resolution, 3D-DDA (Amanatides & Woo 1987)",

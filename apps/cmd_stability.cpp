@@ -4,6 +4,7 @@
 #include "apps/commands.h"
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/host.h"
 #include "base/split.h"
 #include "datasets_gen/memory_guard.h"
 #include "mesh/mesh_io.h"
@@ -86,7 +87,7 @@ stab::ReportHeader report_header(const StabilityArgs& a, const stab::Options& op
     const char* rev = std::getenv("RTLAB_GIT_REVISION");
     header.revision = rev != nullptr && *rev != '\0' ? rev : "unknown";
     header.compiler = stab::compiler_description();
-    header.cpu = stab::cpu_description();
+    header.cpu = cpu_model();
     header.options = opt;
     return header;
 }

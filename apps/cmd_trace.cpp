@@ -8,6 +8,7 @@
 #include "scene/scene_io.h"
 #include "trace/binary_io.h"
 #include "trace/measure.h"
+#include "trace/measure_json.h"
 #include "trace/scene_tracer.h"
 
 #include <CLI/CLI.hpp>
@@ -73,24 +74,9 @@ int run_trace(const TraceArgs& a) {
     j["query"] = a.any_hit ? "any_hit" : "closest_hit";
     j["robust"] = a.robust;
     j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
-    j["rays"] = m.rays;
-    j["hits"] = m.hits;
-    j["build_ms"] = m.build_ms;
-    j["trace_ms"] = m.trace_ms;
     j["repeat"] = a.repeat;
     j["warmup"] = a.warmup;
-    j["mrays_per_s"] = m.mrays_per_s;
-    j["accel_bytes"] = m.accel_bytes;
-    j["bytes_per_prim"] = m.bytes_per_prim;
-    if (m.has_stats) {
-        j["nodes_per_ray"] = m.nodes_per_ray;
-        j["prims_per_ray"] = m.prims_per_ray;
-        j["cost_model"] = m.cost_model;
-        j["measured_cost"] = m.measured_cost;
-        if (m.epo >= 0) {
-            j["epo"] = m.epo;
-        }
-    }
+    write_measurement(j, m);
     if (!a.hits.empty()) {
         save_hits(a.hits, hits);
     }
@@ -105,8 +91,8 @@ Command add_trace(CLI::App& root) {
     CLI::App* sub = root.add_subcommand(
         "trace",
         "Trace a ray file through a scene with one structure per primitive set; prints one JSON "
-        "object (accel method rays hits build_ms trace_ms mrays_per_s [nodes_per_ray "
-        "prims_per_ray cost_model measured_cost [epo]])");
+        "object (accel method rays hits build_ms trace_ms mrays_per_s accel_bytes nodes leaves "
+        "max_depth sah_cost [nodes_per_ray prims_per_ray cost_model measured_cost [epo]])");
     sub->add_option("scene,--scene", a->scene,
                     "Scene JSON or mesh file (.obj .ply .off .stl), positional or --scene")
         ->required();

@@ -5,6 +5,7 @@
 #include "bench/benchmarks.h"
 #include "bench/paired.h"
 #include "datasets_gen/generators.h"
+#include "scene/scene_setting.h"
 #include "trace/clip.h"
 
 #include <memory>
@@ -22,11 +23,7 @@ namespace {
 // lights, materials.
 Scene without_material(const Scene& s, std::string_view material) {
     const int drop = s.find_material(material);
-    Scene out;
-    out.camera = s.camera;
-    out.background = s.background;
-    out.lights = s.lights;
-    out.materials = s.materials;
+    Scene out = setting_of(s);
     for (const ObjectRef& r : s.order) {
         visit_object(s, r, [&]<class P>(const auto& o) {
             if (drop < 0 || o.material != static_cast<std::uint32_t>(drop)) {
@@ -55,11 +52,7 @@ int size_suffix(std::string_view name, std::string_view prefix) {
 // The scene with every polygon fanned into triangles (one mesh per polygon, same material), so
 // Embree, which has no polygon geometry, can trace the same primitives.
 Scene polygons_as_meshes(const Scene& s) {
-    Scene out;
-    out.camera = s.camera;
-    out.background = s.background;
-    out.lights = s.lights;
-    out.materials = s.materials;
+    Scene out = setting_of(s);
     for (const ObjectRef& r : s.order) {
         visit_object(s, r, [&]<class P>(const auto& o) {
             if constexpr (std::is_same_v<std::decay_t<decltype(o)>, PolygonObject>) {

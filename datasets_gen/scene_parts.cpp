@@ -1,6 +1,8 @@
 // Shared generator pieces: random source, SPD view, floor, sphere sets.
 #include "datasets_gen/scene_parts.h"
 
+#include "scene/scene_setting.h"
+
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -111,6 +113,22 @@ GenCounts sphere_counts(std::uint64_t n, const GenOptions& o) {
         c.spheres = n;
     }
     return c;
+}
+
+GenCounts with_floor_counts(GenCounts c, const GenOptions& o) {
+    if (o.as_mesh) {
+        c.triangles = saturating_add(c.triangles, 2);
+    } else {
+        c.polygons = saturating_add(c.polygons, 1);
+        c.polygon_vertices = saturating_add(c.polygon_vertices, 4);
+    }
+    return c;
+}
+
+Scene scene_as_mesh(const Scene& s, const GenOptions& o) {
+    Scene m = setting_of(s);
+    m.add(MeshObject{scene_to_mesh(s, o.tess), "", 0});
+    return m;
 }
 
 }  // namespace rtlab::gen

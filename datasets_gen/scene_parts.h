@@ -74,6 +74,13 @@ void add_spheres(Scene& s,
 /// Counts of add_spheres(n spheres) under o.
 [[nodiscard]] GenCounts sphere_counts(std::uint64_t n, const GenOptions& o);
 
+/// c plus the counts of one add_floor under o.
+[[nodiscard]] GenCounts with_floor_counts(GenCounts c, const GenOptions& o);
+
+/// s's setting (camera, background, lights, materials) with everything in it as one mesh object
+/// of material 0 (scene_to_mesh with o.tess).
+[[nodiscard]] Scene scene_as_mesh(const Scene& s, const GenOptions& o);
+
 /// A camera looking from `from` at `at`, up +Z, 45 degree fov.
 [[nodiscard]] Camera look_at(const Vec3d& from, const Vec3d& at);
 

@@ -36,14 +36,7 @@ Scene make_flake_at(const GenOptions& o, const Vec3d& offset) {
 }
 
 GenCounts flake_counts(const GenOptions& o) {
-    GenCounts c = sphere_counts(flake_sphere_count(o.size), o);
-    if (o.as_mesh) {
-        c.triangles = saturating_add(c.triangles, 2);
-    } else {
-        c.polygons = 1;
-        c.polygon_vertices = 4;
-    }
-    return c;
+    return with_floor_counts(sphere_counts(flake_sphere_count(o.size), o), o);
 }
 
 Scene make_flake(const GenOptions& o) {

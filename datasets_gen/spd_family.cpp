@@ -199,13 +199,7 @@ Scene make_gears(const GenOptions& o) {
     }
     add_floor(s, extent / 2, extent / 2, -0.01, extent / 2 + 2, 1, false);
     if (o.as_mesh) {
-        Scene m;
-        m.camera = s.camera;
-        m.background = s.background;
-        m.lights = s.lights;
-        m.materials = s.materials;
-        m.add(MeshObject{scene_to_mesh(s, o.tess), "", 0});
-        return m;
+        return scene_as_mesh(s, o);
     }
     return s;
 }
@@ -231,16 +225,7 @@ Generator spiral_generator() {
         0,
         4,
         24,
-        [](const GenOptions& o) {
-            GenCounts c = shells_counts(o);
-            if (o.as_mesh) {
-                c.triangles = saturating_add(c.triangles, 2);
-            } else {
-                c.polygons = 1;
-                c.polygon_vertices = 4;
-            }
-            return c;
-        },
+        [](const GenOptions& o) { return with_floor_counts(shells_counts(o), o); },
         make_shells};
 }
 

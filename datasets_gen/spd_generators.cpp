@@ -71,16 +71,10 @@ template <std::size_t I>
 Scene spd_make(const GenOptions& o) {
     const spd::Database& d = spd::databases()[I];
     Scene s = nff::to_scene(d.document(o.size), d.name);
-    if (!o.as_mesh) {
-        return s;
+    if (o.as_mesh) {
+        return scene_as_mesh(s, o);
     }
-    Scene m;
-    m.camera = s.camera;
-    m.background = s.background;
-    m.lights = s.lights;
-    m.materials = s.materials;
-    m.add(MeshObject{scene_to_mesh(s, o.tess), "", 0});
-    return m;
+    return s;
 }
 
 template <std::size_t I>

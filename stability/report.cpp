@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string_view>
 
 namespace rtlab::stab {
@@ -105,24 +104,6 @@ std::string compiler_description() {
     c += ", debug";
 #endif
     return c;
-}
-
-std::string cpu_description() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const std::size_t colon = line.find(':');
-            if (colon != std::string::npos) {
-                std::size_t start = colon + 1;
-                while (start < line.size() && line[start] == ' ') {
-                    ++start;
-                }
-                return line.substr(start);
-            }
-        }
-    }
-    return "unknown";
 }
 
 namespace {

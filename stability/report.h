@@ -18,7 +18,7 @@ struct ReportHeader {
     std::string command;   ///< the command line that produced the report
     std::string revision;  ///< git revision (the caller's; "unknown" when not given)
     std::string compiler;  ///< e.g. "g++ 12.2.0, release" (see compiler_description)
-    std::string cpu;       ///< e.g. "AMD EPYC 7B13" (see cpu_description)
+    std::string cpu;       ///< e.g. "AMD EPYC 7B13" (base/host.h cpu_model)
     Options options;       ///< rays and seed of the run
 };
 
@@ -32,9 +32,6 @@ struct CaseResult {
 
 /// The compiler and build type this binary was built with.
 std::string compiler_description();
-
-/// The CPU model from /proc/cpuinfo, or "unknown".
-std::string cpu_description();
 
 /// The report as markdown: a header, then per case a table of subject, precision, rays, failures
 /// (kind), max/median relative t error, ns/ray and note. NaN figures print as "-".

@@ -1,29 +1,16 @@
 // Provenance of results: compile-time revision and version (sweep/CMakeLists.txt), run-time host.
 #include "sweep/provenance.h"
 
+#include "base/host.h"
+
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
-#include <fstream>
 #include <unistd.h>
 
 namespace rtlab::sweep {
 
 namespace {
-
-std::string cpu_model() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const std::size_t colon = line.find(':');
-            if (colon != std::string::npos) {
-                return line.substr(line.find_first_not_of(' ', colon + 1));
-            }
-        }
-    }
-    return "unknown";
-}
 
 std::string env_or(const char* name, const std::string& fallback) {
     const char* v = std::getenv(name);

@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "sweep/provenance.h"
 #include "trace/measure.h"
+#include "trace/measure_json.h"
 #include "trace/ray_gen.h"
 #include "trace/scene_tracer.h"
 
@@ -142,24 +143,7 @@ void measure_case(Workspace& w, const SweepFile& s, const Case& c, int threads, 
     const TraceMeasurement m = measure_trace(*w.tracer, rays_it->second, opt);
     j["sets"] = sets_text(*w.tracer);
     j["primitives"] = w.tracer->primitive_count();
-    j["rays"] = m.rays;
-    j["hits"] = m.hits;
-    j["build_ms"] = m.build_ms;
-    j["trace_ms"] = m.trace_ms;
-    j["trace_ms_runs"] = m.trace_ms_runs;
-    j["mrays_per_s"] = m.mrays_per_s;
-    j["accel_bytes"] = m.accel_bytes;
-    j["bytes_per_prim"] = m.bytes_per_prim;
-    j["nodes"] = m.nodes;
-    j["leaves"] = m.leaves;
-    j["max_depth"] = m.max_depth;
-    j["sah_cost"] = m.sah_cost;
-    if (m.has_stats) {
-        j["nodes_per_ray"] = m.nodes_per_ray;
-        j["prims_per_ray"] = m.prims_per_ray;
-        j["cost_model"] = m.cost_model;
-        j["measured_cost"] = m.measured_cost;
-    }
+    write_measurement(j, m);
 }
 
 // FNV-1a over the pixels' float bits: equal images give equal hashes (a render is the same for

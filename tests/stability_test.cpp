@@ -6,6 +6,7 @@
 #include "stability/stability.h"
 
 #include "accel/any_accel.h"
+#include "base/host.h"
 #include "intersect/triangle/moller_trumbore.h"
 #include "intersect/triangle/sphere_mesh.h"
 #include "stability/cases.h"
@@ -78,7 +79,7 @@ TEST_CASE("stability report: markdown table and JSON with NaN as null", "[stabil
     h.command = "rtlab stability --rays 5";
     h.revision = "abc123";
     h.compiler = rtlab::stab::compiler_description();
-    h.cpu = rtlab::stab::cpu_description();
+    h.cpu = rtlab::cpu_model();
     h.options.rays = 5;
     rtlab::stab::CaseResult c;
     c.name = "demo";
