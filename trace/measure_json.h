@@ -12,23 +12,23 @@ namespace rtlab {
 /// structures' own figures; per-ray counts and costs when counted; the end-point overlap when
 /// measured.
 inline void write_measurement(nlohmann::json& j, const TraceMeasurement& m) {
-    j["rays"] = m.rays;
-    j["hits"] = m.hits;
-    j["build_ms"] = m.build_ms;
-    j["trace_ms"] = m.trace_ms;
-    j["trace_ms_runs"] = m.trace_ms_runs;
-    j["mrays_per_s"] = m.mrays_per_s;
-    j["accel_bytes"] = m.accel_bytes;
-    j["bytes_per_prim"] = m.bytes_per_prim;
-    j["nodes"] = m.nodes;
-    j["leaves"] = m.leaves;
-    j["max_depth"] = m.max_depth;
-    j["sah_cost"] = m.sah_cost;
+    j.update({{"rays", m.rays},
+              {"hits", m.hits},
+              {"build_ms", m.build_ms},
+              {"trace_ms", m.trace_ms},
+              {"trace_ms_runs", m.trace_ms_runs},
+              {"mrays_per_s", m.mrays_per_s},
+              {"accel_bytes", m.accel_bytes},
+              {"bytes_per_prim", m.bytes_per_prim},
+              {"nodes", m.nodes},
+              {"leaves", m.leaves},
+              {"max_depth", m.max_depth},
+              {"sah_cost", m.sah_cost}});
     if (m.has_stats) {
-        j["nodes_per_ray"] = m.nodes_per_ray;
-        j["prims_per_ray"] = m.prims_per_ray;
-        j["cost_model"] = m.cost_model;
-        j["measured_cost"] = m.measured_cost;
+        j.update({{"nodes_per_ray", m.nodes_per_ray},
+                  {"prims_per_ray", m.prims_per_ray},
+                  {"cost_model", m.cost_model},
+                  {"measured_cost", m.measured_cost}});
         if (m.epo >= 0) {
             j["epo"] = m.epo;
         }
