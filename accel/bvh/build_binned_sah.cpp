@@ -17,21 +17,6 @@ namespace rtlab {
 
 namespace {
 
-/// Bin of centre c on an axis with lower centroid bound lo and scale bins/extent.
-std::uint32_t bin_of(float c, float lo, float scale, std::uint32_t bins) {
-    const float f = (c - lo) * scale;
-    // c >= lo, so f >= 0 except for the NaN of 0 * inf (c == lo, extent so tiny that the scale
-    // overflowed): both mean bin 0. The top edge (c == hi) and overflow clamp to the last bin, and
-    // the float is converted only when it is in range.
-    if (!(f > 0.0f)) {
-        return 0;
-    }
-    if (!(f < static_cast<float>(bins))) {
-        return bins - 1;
-    }
-    return std::min(bins - 1, static_cast<std::uint32_t>(f));
-}
-
 /// The bins of a range on all three axes at once (bins per axis, axis after axis): each axis's
 /// lower centroid bound and scale bins / extent, 0 for an axis whose centroids coincide (all its
 /// primitives then land in bin 0 and the axis is not considered).
@@ -52,7 +37,8 @@ struct AxisBins {
             const std::uint32_t id = t.ids[i];
             const Vec3f c = t.center(id);
             for (std::uint32_t axis = 0; axis < 3; ++axis) {
-                const std::uint32_t k = axis * bins + bin_of(c[axis], lo[axis], scale[axis], bins);
+                const std::uint32_t k =
+                    axis * bins + bvh_detail::centroid_bin(c[axis], lo[axis], scale[axis], bins);
                 box[k].extend(t.boxes[id]);
                 ++count[k];
             }
@@ -187,7 +173,8 @@ Bvh build_bvh_binned_sah(const BuildInput& in, const Bvh::Config& cfg, std::uint
         const float lo = local.bins.lo[best.axis], scale = local.bins.scale[best.axis];
         const auto first_right =
             std::partition(t.ids.begin() + b, t.ids.begin() + e, [&](std::uint32_t id) {
-                return bin_of(t.center(id)[best.axis], lo, scale, bins) <= best.bin;
+                return bvh_detail::centroid_bin(t.center(id)[best.axis], lo, scale, bins) <=
+                       best.bin;
             });
         const auto mid = static_cast<std::uint32_t>(first_right - t.ids.begin());
         return bvh_detail::Split{mid, best.axis};

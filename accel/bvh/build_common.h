@@ -281,6 +281,21 @@ inline bool sah_leaf_anyway(const Bvh::Config& cfg, std::uint32_t n) {
            cfg.intersection_cost * sah_count(cfg, n) <= cfg.traversal_cost;
 }
 
+/// The object bin of centroid coordinate c among `bins` bins from lo, scale = bins / extent:
+/// floor((c - lo) * scale) clamped to [0, bins - 1]. c >= lo, so the product is >= 0 except for the
+/// NaN of 0 * inf (c == lo with an extent so tiny that the scale overflowed): both mean bin 0; the
+/// top edge (c == hi) and overflow clamp to the last bin, and the float is converted only in range.
+inline std::uint32_t centroid_bin(float c, float lo, float scale, std::uint32_t bins) {
+    const float f = (c - lo) * scale;
+    if (!(f > 0.0f)) {
+        return 0;
+    }
+    if (!(f < static_cast<float>(bins))) {
+        return bins - 1;
+    }
+    return std::min(bins - 1, static_cast<std::uint32_t>(f));
+}
+
 /// A split of the id range [b, e): [b, mid) goes left, [mid, e) right (b < mid < e).
 struct Split {
     std::uint32_t mid;   ///< first slot of the right child

@@ -235,7 +235,8 @@ private:
                 for (std::size_t i = lo; i < hi; ++i) {
                     const Vec3f c = refs[i].box.center();
                     for (std::uint32_t a = 0; a < 3; ++a) {
-                        const std::uint32_t k = a * bins_ + object_bin(c[a], cb.lo[a], scale[a]);
+                        const std::uint32_t k =
+                            a * bins_ + bvh_detail::centroid_bin(c[a], cb.lo[a], scale[a], bins_);
                         acc.box[k].extend(refs[i].box);
                         ++acc.enter[k];
                     }
@@ -249,14 +250,6 @@ private:
             }
         }
         return best;
-    }
-
-    std::uint32_t object_bin(float c, float lo, float scale) const {
-        const float f = (c - lo) * scale;
-        if (!(f > 0.0f)) {
-            return 0;
-        }
-        return std::min(bins_ - 1, static_cast<std::uint32_t>(std::min(f, float(bins_ - 1))));
     }
 
     /// True when axis a of the node box can hold spatial bins: a positive, finite extent.
@@ -374,7 +367,8 @@ private:
         const Refs& refs, const Bounds3f& cb, const Candidate& c, Refs& left, Refs& right) const {
         const float scale = object_scale(cb)[c.axis];
         partition(refs, left, right, [&](const Ref& r, auto& l, auto& h) {
-            const bool low = object_bin(r.box.center()[c.axis], cb.lo[c.axis], scale) <= c.bin;
+            const bool low = bvh_detail::centroid_bin(r.box.center()[c.axis], cb.lo[c.axis], scale,
+                                                      bins_) <= c.bin;
             (low ? l : h).push_back(r);
         });
     }
