@@ -4,7 +4,7 @@
 // indirection), takes the children's boxes from the bins and their centroid bounds from the
 // partition. A node of n primitives uses min(bins, 4 + n/20) bins per axis (Embree's BinMapping
 // rule): small nodes, the most numerous, reset and sweep few bins. Nodes of at least
-// `parallel_min` primitives bin data-parallel in fixed blocks and partition into the other of two
+// `reduce_min` primitives bin data-parallel in fixed blocks and partition into the other of two
 // buffers (ping-pong; offsets from each block's bins, so one pass); subtrees of at least
 // `task_min` primitives are tasks writing their own node chunks, stitched at the end (as
 // madmann91/bvh's mini-tree builder stitches its mini-trees).
@@ -35,12 +35,12 @@ using binned::Box;
 using binned::PrimRef;
 using binned::V4;
 
-// Subtrees with at least this many primitives are built by their own task into their own chunk.
-constexpr std::uint32_t task_min = 4096;
-// Nodes with at least this many primitives bin and partition in parallel blocks.
-constexpr std::uint32_t parallel_min = 1u << 16;
-// Block size of the parallel passes (fixed, so the work split never depends on the threads).
-constexpr std::size_t block = 1u << 14;
+// Subtrees of bvh_detail::task_min primitives or more are tasks; nodes of reduce_min or more bin
+// and partition in parallel blocks of reduce_block (fixed, so the work split never depends on the
+// threads).
+using bvh_detail::reduce_min;
+using bvh_detail::task_min;
+constexpr std::size_t block = bvh_detail::reduce_block;
 
 /// A node's primitive range with its box and the bounds of its doubled centroids.
 struct Range {
@@ -126,7 +126,7 @@ private:
             offset[k + 1] += offset[k];
         }
         refs_.resize(offset[blocks]);
-        if (refs_.size() >= parallel_min) {
+        if (refs_.size() >= reduce_min) {
             scratch_.resize(refs_.size());
         }
         std::vector<Range> part(blocks);
@@ -221,7 +221,7 @@ private:
             thread_local Bins small(0);
             Bins big(0);
             std::vector<Bins> per_block;
-            Bins& bins = r.size() < parallel_min ? small : big;
+            Bins& bins = r.size() < reduce_min ? small : big;
             bin(r, nb, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins,
                 per_block);
             float best = std::numeric_limits<float>::infinity();
@@ -277,7 +277,7 @@ private:
             }
         };
         out.reset(nb);
-        if (r.size() < parallel_min) {
+        if (r.size() < reduce_min) {
             run(r.b, r.e, out);
             return;
         }
@@ -366,7 +366,7 @@ private:
             return !((p.lo[axis] + p.hi[axis] - lo) * scale >= limit);
         };
         const std::uint32_t mid = r.b + bins.left_of(axis, split);
-        if (r.size() < parallel_min) {
+        if (r.size() < reduce_min) {
             // In place: swap misplaced pairs from both ends.
             PrimRef* refs = refs_of(r);
             std::uint32_t i = r.b, j = r.e;

@@ -109,6 +109,9 @@ private:
 /// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.
 inline constexpr std::uint32_t reduce_min = 1u << 16;
 inline constexpr std::uint32_t reduce_block = 1u << 14;
+/// Subtrees of at least this many primitives are built by tasks of their own into their own
+/// node chunks, spliced in the order a serial build gives (the same tree for any threads).
+inline constexpr std::uint32_t task_min = 4096;
 
 /// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
 template <class F>
@@ -355,8 +358,8 @@ public:
         const auto root_box = [&] {
             return Boxes == NodeBoxes::before_split ? range_bounds(0, n) : Bounds3f{};
         };
-        if (parallel && n >= parallel_min) {
-            // Subtrees below parallel_min build densely into arrays of their own (in cache, no
+        if (parallel && n >= task_min) {
+            // Subtrees below task_min build densely into arrays of their own (in cache, no
             // array of 2n - 1 slots to fill and compact), then go to their final places.
             Part root;
             build_part<Boxes>(root, split, 0, n, 0, root_box());
@@ -372,7 +375,6 @@ public:
     }
 
     /// Ranges at least this large build their two children as parallel tasks.
-    static constexpr std::uint32_t parallel_min = 4096;
 
 private:
     // The split of ids[b, e) at `depth`, or nullopt for a leaf.
@@ -453,7 +455,7 @@ private:
     }
 
     // A subtree of a parallel build as build_dense lays it out from local index 0 (its root at 0,
-    // the rest in depth-first pair order, child links local): a range below parallel_min (or a
+    // the rest in depth-first pair order, child links local): a range below task_min (or a
     // leaf) built serially, or an inner node alone (children pair at local 1) whose two children
     // were built as parallel tasks into `kids`.
     struct Part {
@@ -462,7 +464,7 @@ private:
         std::uint32_t size = 0;  // nodes in the subtree, its root included
     };
 
-    // Builds the subtree of ids[b, e) into `part`, children of ranges of parallel_min or more as
+    // Builds the subtree of ids[b, e) into `part`, children of ranges of task_min or more as
     // parallel tasks; returns its root's box.
     template <NodeBoxes Boxes, class SplitFn>
     Bounds3f build_part(Part& part,
@@ -472,7 +474,7 @@ private:
                         std::uint32_t depth,
                         const Bounds3f& given) {
         part.dense.emplace_back();
-        if (e - b < parallel_min) {
+        if (e - b < task_min) {
             part.dense.reserve(2 * std::size_t{e - b} - 1);
             const Bounds3f box = build_dense<Boxes>(part.dense, split, 0, b, e, depth, given);
             part.size = static_cast<std::uint32_t>(part.dense.size());
