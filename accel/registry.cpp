@@ -1,8 +1,8 @@
-// The registry: one row per builder (and, later, per node layout). A row names the structure,
-// describes it in one line, declares the parameters a spec may set (defaults taken from the
-// structure's Config, so they cannot drift apart) and builds from a parsed spec. Adding a builder:
-// its own accel/<kind>/build_<name>.cpp with one free function, declared and listed here.
-
+// The registry: one row per structure and builder. A row names the structure, describes it in one
+// line, declares the parameters a spec may set (each declared once, bound to its Config member,
+// defaults taken from the Config: accel/registry_fields.h) and builds from a parsed spec. Adding a
+// binary BVH builder: its own accel/bvh/build_<name>.cpp with one free function, declared here,
+// and its entry in binary_builders, which makes both its row and its `from=` choice.
 #include "accel/any_accel.h"
 #include "accel/registry_fields.h"
 #include "base/thread_arena.h"
@@ -78,31 +78,6 @@ const ParamSpec threads = build_only(
                   0,
                   256,
                   "TBB threads of the build (0: all allowed); the tree is the same for any"));
-// The binary BVH builders a layout row converts (`from=`), in choice order (the first is the
-// default); each is also a row of its own, "bvh:" + name (a test checks the two agree).
-struct BinaryBuilder {
-    std::string_view name;
-    Bvh (*build)(const BuildInput&, const Bvh::Config&, std::uint32_t);
-};
-constexpr BinaryBuilder binary_builders[] = {
-    {"pbinned", &build_bvh_binned_parallel}, {"binned", &build_bvh_binned_sah},
-    {"sweep", &build_bvh_sweep_sah},         {"lbvh", &build_bvh_lbvh},
-    {"median", &build_bvh_median},           {"sbvh", &build_bvh_sbvh}};
-
-/// `from`: the choice among binary_builders.
-Choice<const BinaryBuilder*> binary_builder_choice() {
-    Choice<const BinaryBuilder*> c;
-    std::vector<std::string_view> names;
-    for (const BinaryBuilder& b : binary_builders) {
-        names.push_back(b.name);
-        c.values.push_back(&b);
-    }
-    c.param =
-        choice_param("from", 0, std::move(names), "the binary BVH builder whose tree is converted");
-    return c;
-}
-
-const Choice<const BinaryBuilder*> from = binary_builder_choice();
 const Field<KdTree::Config> kd_ct = field<&KdTree::Config::traversal_cost>(
     real_param("ct",
                static_cast<double>(kd_default.traversal_cost),
@@ -199,11 +174,6 @@ TwoLevelGridConfig grid2_config(const AccelSpec& s) {
     return config_from<TwoLevelGridConfig>(s, {&top_density, &leaf_density, &grid2_max_res});
 }
 
-/// The binary tree a layout row converts: built by the builder its `from` parameter names.
-Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
-    return from.of(s)->build(in, bvh_config(s), threads_of(s));
-}
-
 /// A row's build function: the builder B called with the Config the spec describes.
 template <auto B, auto ToConfig>
 AnyAccel row(const BuildInput& in, const AccelSpec& s) {
@@ -214,6 +184,90 @@ AnyAccel row(const BuildInput& in, const AccelSpec& s) {
 template <auto B, auto ToConfig>
 AnyAccel threaded_row(const BuildInput& in, const AccelSpec& s) {
     return B(in, ToConfig(s), threads_of(s));
+}
+
+ParamSpec with_default(ParamSpec p, double value) {
+    p.default_value = value;
+    return p;
+}
+ParamSpec with_max(ParamSpec p, double value) {
+    p.max = value;
+    return p;
+}
+// The SAH builders (bvh:binned, bvh:pbinned, bvh:sweep) and the wide layouts' source trees default
+// to leaves of up to 8 with ct 4, not the Config's 4 and 1: a node visit costs about four triangle
+// tests here. The wide layouts' SIMD leaf kernel tests up to 8 triangles for about the price of
+// one, and sweeps/bvh8-leaves.json measured them 1.2-1.3x faster on the tessellated flake (analytic
+// spheres: unchanged), with leaf and node memory less than half; the binary SAH rows traced SF 4 a
+// median 1.08x (tessellated) and 1.14x (analytic) as fast as with 4 and 1 (`rtlab trace --threads 1
+// --repeat 5`, 42 alternating pairs), and built the mesh in 25-45% less time (docs/results.md,
+// "Structures: speed, memory, build time (against Embree)").
+const ParamSpec sah_max_leaf = with_default(max_leaf.param, 8);
+const ParamSpec sah_ct = with_default(bvh_ct.param, 4);
+
+// The binned SAH builders take the same parameters.
+const std::vector<ParamSpec> binned_params{sah_max_leaf, bins.param,      sah_ct,
+                                           bvh_ci.param, sah_block.param, threads};
+
+// The binary BVH builders: each is a row of its own ("bvh:<name>") and one of the layout rows'
+// `from=` choices (<name>), so the two lists are one.
+struct BinaryBuilder {
+    AccelEntry row;
+    Bvh (*build)(const BuildInput&, const Bvh::Config&, std::uint32_t);
+};
+
+/// The builder B as a row and a source of layout rows.
+template <auto B>
+BinaryBuilder binary(std::string_view name,
+                     std::string_view description,
+                     std::vector<ParamSpec> params) {
+    return {{name, description, std::move(params), &threaded_row<B, bvh_config>}, B};
+}
+
+const BinaryBuilder binary_builders[] = {
+    binary<build_bvh_median>("bvh:median",
+                             "binary BVH, object median on the largest centroid axis",
+                             {max_leaf.param, threads}),
+    binary<build_bvh_binned_sah>("bvh:binned", "binary BVH, binned SAH (Wald 2007)", binned_params),
+    binary<build_bvh_binned_parallel>(
+        "bvh:pbinned",
+        "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n "
+        "primitives), parallel with TBB, deterministic",
+        binned_params),
+    binary<build_bvh_sweep_sah>("bvh:sweep",
+                                "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
+                                {sah_max_leaf, sah_ct, bvh_ci.param, sah_block.param, threads}),
+    binary<build_bvh_sbvh>(
+        "bvh:sbvh",
+        "binary BVH, binned SAH with spatial splits (Stich et al. 2009; 2 bins or more): a "
+        "primitive may be cut into several leaves; parallel with TBB, deterministic",
+        binned_params),
+    binary<build_bvh_lbvh>("bvh:lbvh",
+                           "binary BVH, Morton-code radix tree (Karras 2012)",
+                           {max_leaf.param, morton_bits.param, threads}),
+};
+
+/// `from`: the choice among binary_builders by their names after "bvh:" (default pbinned).
+Choice<const BinaryBuilder*> binary_builder_choice() {
+    Choice<const BinaryBuilder*> c;
+    std::vector<std::string_view> names;
+    std::size_t default_index = 0;
+    for (const BinaryBuilder& b : binary_builders) {
+        const std::string_view name = b.row.name.substr(b.row.name.find(':') + 1);
+        default_index = name == "pbinned" ? names.size() : default_index;
+        names.push_back(name);
+        c.values.push_back(&b);
+    }
+    c.param = choice_param("from", default_index, std::move(names),
+                           "the binary BVH builder whose tree is converted");
+    return c;
+}
+
+const Choice<const BinaryBuilder*> from = binary_builder_choice();
+
+/// The binary tree a layout row converts: built by the builder its `from` parameter names.
+Bvh source_bvh(const BuildInput& in, const AccelSpec& s) {
+    return from.of(s)->build(in, bvh_config(s), threads_of(s));
 }
 
 // Leaves starting whole 4-slot groups of the SoA leaf data (accel/bvh/bvh.h align_leaf_slots):
@@ -305,24 +359,6 @@ AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
     });
 }
 
-ParamSpec with_default(ParamSpec p, double value) {
-    p.default_value = value;
-    return p;
-}
-ParamSpec with_max(ParamSpec p, double value) {
-    p.max = value;
-    return p;
-}
-// The SAH builders (bvh:binned, bvh:pbinned, bvh:sweep) and the wide layouts' source trees default
-// to leaves of up to 8 with ct 4, not the Config's 4 and 1: a node visit costs about four triangle
-// tests here. The wide layouts' SIMD leaf kernel tests up to 8 triangles for about the price of
-// one, and sweeps/bvh8-leaves.json measured them 1.2-1.3x faster on the tessellated flake (analytic
-// spheres: unchanged), with leaf and node memory less than half; the binary SAH rows traced SF 4 a
-// median 1.08x (tessellated) and 1.14x (analytic) as fast as with 4 and 1 (`rtlab trace --threads 1
-// --repeat 5`, 42 alternating pairs), and built the mesh in 25-45% less time (docs/results.md,
-// "Structures: speed, memory, build time (against Embree)").
-const ParamSpec sah_max_leaf = with_default(max_leaf.param, 8);
-const ParamSpec sah_ct = with_default(bvh_ct.param, 4);
 // A layout row's source-tree parameters take effect only with the `from` builders that read them,
 // the standalone rows' lists: bins with the binned builders, ct, ci and block with every SAH
 // builder, morton_bits with LBVH (max_leaf with all).
@@ -352,9 +388,7 @@ const ParamSpec pair_max_leaf = with_default(max_leaf.param, 32);
 const ParamSpec pair_bins = with_default(from_bins, 32);
 const ParamSpec pair_ct = with_default(from_ct, 16);
 
-// Rows that take the same parameters: the binned SAH builders, the wide layouts, the kd-trees.
-const std::vector<ParamSpec> binned_params{sah_max_leaf, bins.param,      sah_ct,
-                                           bvh_ci.param, sah_block.param, threads};
+// Rows that take the same parameters: the wide layouts, the kd-trees.
 const std::vector<ParamSpec> kd_params{kd_ct.param,     kd_ci.param,        empty_bonus.param,
                                        max_depth.param, min_leaf.param,     perfect.param,
                                        threads,         kd_traversal.param, kd_leaves.param};
@@ -367,36 +401,14 @@ AnyAccel brute_row(const BuildInput& in, const AccelSpec&) {
     return BruteForce::build(in);
 }
 
-const AccelEntry registry_rows[] = {
-    {"brute", "brute force: every primitive box per ray (the reference)", {}, &brute_row},
-    {"bvh:median",
-     "binary BVH, object median on the largest centroid axis",
-     {max_leaf.param, threads},
-     &threaded_row<build_bvh_median, bvh_config>},
-    {"bvh:binned", "binary BVH, binned SAH (Wald 2007)", binned_params,
-     &threaded_row<build_bvh_binned_sah, bvh_config>},
-    {"bvh:pbinned",
-     "binary BVH, binned SAH on all axes in one pass (min(bins, 4 + n/20) bins for n primitives), "
-     "parallel with TBB, deterministic",
-     binned_params, &threaded_row<build_bvh_binned_parallel, bvh_config>},
+// The rows after brute force and the binary builders.
+const AccelEntry other_rows[] = {
     {"bvh:pair",
      "binary BVH, both child boxes in the parent (64-byte node), one SSE test, the ray's side "
      "of the split first",
      {from.param, leaves.param, leaf_align, child_order.param, pair_max_leaf, pair_bins, pair_ct,
       from_ci, soa_block, from_morton_bits, threads},
      &layout_row<&pair_row>},
-    {"bvh:sweep",
-     "binary BVH, full-sweep SAH (MacDonald & Booth 1990)",
-     {sah_max_leaf, sah_ct, bvh_ci.param, sah_block.param, threads},
-     &threaded_row<build_bvh_sweep_sah, bvh_config>},
-    {"bvh:sbvh",
-     "binary BVH, binned SAH with spatial splits (Stich et al. 2009; 2 bins or more): a primitive "
-     "may be cut into several leaves; parallel with TBB, deterministic",
-     binned_params, &threaded_row<build_bvh_sbvh, bvh_config>},
-    {"bvh:lbvh",
-     "binary BVH, Morton-code radix tree (Karras 2012)",
-     {max_leaf.param, morton_bits.param, threads},
-     &threaded_row<build_bvh_lbvh, bvh_config>},
     {"bvh4", "4-wide BVH collapsed from a binary build by surface area, SIMD node test",
      wide_params, &layout_row<&collapse_row<4>>},
     {"bvh8", "8-wide BVH collapsed from a binary build by surface area, SIMD node test",
@@ -431,7 +443,16 @@ const AccelEntry registry_rows[] = {
 }  // namespace
 
 std::span<const AccelEntry> accel_registry() {
-    return registry_rows;
+    static const std::vector<AccelEntry> rows = [] {
+        std::vector<AccelEntry> r{
+            {"brute", "brute force: every primitive box per ray (the reference)", {}, &brute_row}};
+        for (const BinaryBuilder& b : binary_builders) {
+            r.push_back(b.row);
+        }
+        r.insert(r.end(), std::begin(other_rows), std::end(other_rows));
+        return r;
+    }();
+    return rows;
 }
 
 std::span<const std::string_view> accel_variants() {
