@@ -1,8 +1,9 @@
 #pragma once
-// What the stability cases share: a stopwatch, relative-error statistics, row assembly, a seeded
-// generator, a one-thread scope for ns/ray figures, and tracing a whole batch through SceneTracer
-// with any triangle method (occlusion-only methods answer through any-hit).
+// What the stability cases share: a stopwatch, relative-error statistics, row assembly and tracing
+// a whole batch through SceneTracer with any triangle method (occlusion-only methods answer
+// through any-hit). Their seeded generator is base/sampler.h, shared with the cross-checks.
 
+#include "base/sampler.h"
 #include "intersect/triangle/methods.h"
 #include "mesh/triangle_mesh.h"
 #include "stability/stability.h"
@@ -13,7 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -76,35 +76,6 @@ inline Row make_row(std::string case_name,
     r.note = std::move(note);
     return r;
 }
-
-/// Seeded numbers with our own bit mapping, so sets are the same on every standard library.
-class Sampler {
-public:
-    /// Same seed (and stream), same sequence.
-    explicit Sampler(std::uint64_t seed, std::uint64_t stream = 0)
-        : rng_(seed * 0x9E3779B97F4A7C15ull + stream + 1) {}
-    /// Uniform in [lo, hi).
-    double uniform(double lo, double hi) {
-        return lo + (hi - lo) * static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-    }
-    /// Index in [0, n).
-    std::size_t index(std::size_t n) { return static_cast<std::size_t>(rng_() % n); }
-    /// Uniform unit vector (rejection from the cube).
-    Vec3d unit() {
-        for (;;) {
-            const Vec3d p{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
-            const double l2 = length_squared(p);
-            if (l2 > 1e-4 && l2 <= 1) {
-                return p / std::sqrt(l2);
-            }
-        }
-    }
-    /// Uniform point in the ball of radius r around the origin.
-    Vec3d ball(double r) { return unit() * (r * std::cbrt(uniform(0, 1))); }
-
-private:
-    std::mt19937_64 rng_;
-};
 
 /// "name robust" or "name plain".
 inline std::string robust_label(bool robust) {

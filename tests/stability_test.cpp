@@ -383,7 +383,7 @@ TEST_CASE("robust grid walks lose no ray from far origins", "[stability]") {
             const std::vector<rtlab::stab::StructurePlane> planes =
                 rtlab::stab::structure_planes(accel);
             REQUIRE(!planes.empty());
-            rtlab::stab::Sampler rng(seed, 77);
+            rtlab::Sampler rng(seed, 77);
             std::vector<rtlab::Rayf> rays;
             while (rays.size() < 3000) {
                 rtlab::Rayf r;
