@@ -7,6 +7,7 @@
 // exactly (the very parallelepiped the method describes), the ray clipped with GMP rationals.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/exact_ray.h"
 #include "crosscheck/ray_sets.h"
 #include "intersect/box/methods.h"
 
@@ -115,18 +116,6 @@ Rayf local_ray(Rng& rng, RaySet set, const Vec3f& lo, const Vec3f& hi) {
     r.dir = dir;
     return r;
 }
-
-/// The traced ray as two exact points: P1 = org and P2 = org + dir. P2 is summed exactly: the
-/// double sum of the floats is exact only while no component of dir is below 2^-29 of org's, and
-/// the denormal directions of the axis sets would otherwise be judged as zero components.
-struct ExactRay {
-    K::Point_3 p1, p2;
-    explicit ExactRay(const Rayf& r) {
-        const Vec3d o(r.org), d(r.dir);
-        p1 = K::Point_3(o.x, o.y, o.z);
-        p2 = p1 + K::Vector_3(d.x, d.y, d.z);
-    }
-};
 
 /// Parameter of a point q on the line p1 + t (p2 - p1), along the direction's dominant axis.
 double line_param(const ExactRay& er, const Vec3f& dir, const K::Point_3& q) {

@@ -12,6 +12,23 @@
 
 namespace rtlab::xcheck {
 
+double mpfr_root(const mpq_class& a, const mpq_class& b, const mpq_class& disc, int sign) {
+    mpfr_t x, y;
+    mpfr_inits2(256, x, y, static_cast<mpfr_ptr>(nullptr));
+    mpfr_set_q(x, disc.get_mpq_t(), MPFR_RNDN);
+    mpfr_sqrt(x, x, MPFR_RNDN);
+    if (sign < 0) {
+        mpfr_neg(x, x, MPFR_RNDN);
+    }
+    mpfr_set_q(y, b.get_mpq_t(), MPFR_RNDN);
+    mpfr_sub(x, x, y, MPFR_RNDN);
+    mpfr_set_q(y, a.get_mpq_t(), MPFR_RNDN);
+    mpfr_div(x, x, y, MPFR_RNDN);
+    const double t = mpfr_get_d(x, MPFR_RNDN);
+    mpfr_clears(x, y, static_cast<mpfr_ptr>(nullptr));
+    return t;
+}
+
 namespace {
 
 using Q = mpq_class;
@@ -100,24 +117,6 @@ void eval_mpfr(const mpfr_t* c, std::size_t n, const mpfr_t x, mpfr_t out) {
 
 Q exact(double x) {
     return Q(x);
-}
-
-/// (-b +- sqrt(disc)) / a in 256-bit MPFR, rounded to double.
-double mpfr_root(const Q& a, const Q& b, const Q& disc, int sgn) {
-    mpfr_t x, y;
-    mpfr_inits2(256, x, y, static_cast<mpfr_ptr>(nullptr));
-    mpfr_set_q(x, disc.get_mpq_t(), MPFR_RNDN);
-    mpfr_sqrt(x, x, MPFR_RNDN);
-    if (sgn < 0) {
-        mpfr_neg(x, x, MPFR_RNDN);
-    }
-    mpfr_set_q(y, b.get_mpq_t(), MPFR_RNDN);
-    mpfr_sub(x, x, y, MPFR_RNDN);
-    mpfr_set_q(y, a.get_mpq_t(), MPFR_RNDN);
-    mpfr_div(x, x, y, MPFR_RNDN);
-    const double t = mpfr_get_d(x, MPFR_RNDN);
-    mpfr_clears(x, y, static_cast<mpfr_ptr>(nullptr));
-    return t;
 }
 
 /// The sphere's ray quadratic a t^2 + 2 b t + c over Q.

@@ -22,6 +22,10 @@ struct ExactRoot {
     double t = 0;
 };
 
+/// (-b + sign * sqrt(disc)) / a for rational a != 0, b and disc >= 0: the roots of
+/// a t^2 + 2 b t + c with disc = b^2 - a c, from a 256-bit MPFR square root rounded to double.
+double mpfr_root(const mpq_class& a, const mpq_class& b, const mpq_class& disc, int sign);
+
 /// Exact sphere answer: the smallest t in [tmin, tmax] (tmax may be +inf) with
 /// |org + t dir - center| = radius, decided in rationals; the root itself from a 256-bit MPFR
 /// square root. dir must be non-zero.

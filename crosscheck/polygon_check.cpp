@@ -9,6 +9,7 @@
 // the dominant axis of N, ties to the lowest index) says bounded or boundary.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/exact_ray.h"
 #include "crosscheck/ray_sets.h"
 #include "intersect/polygon/methods.h"
 
@@ -179,18 +180,6 @@ Rayf polygon_ray(Rng& rng, RaySet set, const TestPolygon& tp) {
     r.dir = dir;
     return r;
 }
-
-/// The traced ray as two exact points: P1 = org and P2 = org + dir. P2 is summed exactly: the
-/// double sum of the floats is exact only while no component of dir is below 2^-29 of org's, and
-/// the denormal directions of the axis sets would otherwise be judged as zero components.
-struct ExactRay {
-    K::Point_3 p1, p2;
-    explicit ExactRay(const Rayf& r) {
-        const Vec3d o(r.org), d(r.dir);
-        p1 = K::Point_3(o.x, o.y, o.z);
-        p2 = p1 + K::Vector_3(d.x, d.y, d.z);
-    }
-};
 
 /// The exact polygon of the reference definition (see the top of the file).
 struct ExactPolygon {

@@ -3,6 +3,7 @@
 // from the exact rational quadratic (GMP) with a 256-bit MPFR square root.
 #include "crosscheck/checks.h"
 #include "crosscheck/driver.h"
+#include "crosscheck/exact.h"
 #include "crosscheck/ray_sets.h"
 #include "intersect/sphere/methods.h"
 
@@ -10,7 +11,6 @@
 
 #include <cmath>
 #include <gmpxx.h>
-#include <mpfr.h>
 #include <random>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
@@ -64,24 +64,6 @@ bool cgal_hit(const SphereCase& c) {
     const bool both_inside =
         CGAL::squared_distance(a, ctr) < r2 && CGAL::squared_distance(b, ctr) < r2;
     return near && !both_inside;
-}
-
-/// (-b +- sqrt(disc)) / a in 256-bit MPFR, rounded to double.
-double mpfr_root(const mpq_class& a, const mpq_class& b, const mpq_class& disc, int sign) {
-    mpfr_t x, y;
-    mpfr_inits2(256, x, y, static_cast<mpfr_ptr>(nullptr));
-    mpfr_set_q(x, disc.get_mpq_t(), MPFR_RNDN);
-    mpfr_sqrt(x, x, MPFR_RNDN);
-    if (sign < 0) {
-        mpfr_neg(x, x, MPFR_RNDN);
-    }
-    mpfr_set_q(y, b.get_mpq_t(), MPFR_RNDN);
-    mpfr_sub(x, x, y, MPFR_RNDN);
-    mpfr_set_q(y, a.get_mpq_t(), MPFR_RNDN);
-    mpfr_div(x, x, y, MPFR_RNDN);
-    const double t = mpfr_get_d(x, MPFR_RNDN);
-    mpfr_clears(x, y, static_cast<mpfr_ptr>(nullptr));
-    return t;
 }
 
 /// The oracle for one case. g(t) = a t^2 + 2 b t + c is |o + t d - centre|^2 - r^2 in exact
