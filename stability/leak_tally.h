@@ -23,35 +23,32 @@ struct LeakTally {
     std::size_t outside = 0;
 };
 
-/// True when method M, testing every triangle of `mesh` without boxes, hits one that the exact
-/// ray (its float values taken as exact) meets within the ray's window.
+/// What method M finds alone, testing every triangle of a mesh without boxes.
+struct MethodAlone {
+    bool any = false;    ///< it hits some triangle
+    bool exact = false;  ///< it hits one that the exact ray (its float values taken as exact)
+                         ///< meets within the ray's window
+};
+
+/// One pass of method M over every triangle of `mesh` (no boxes); stops at the first hit the
+/// exact ray confirms.
 template <class M>
-bool hits_an_exact_triangle(const TriangleMesh& mesh, const Rayf& ray) {
+MethodAlone method_alone(const TriangleMesh& mesh, const Rayf& ray) {
     const RayDataOf<M> data = precompute_ray<M>(ray);
+    MethodAlone out;
     for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
         const auto c = mesh.corners(i);
         if (!occluded_with<M>(M::prepare({c[0], c[1], c[2]}), ray, data)) {
             continue;
         }
+        out.any = true;
         const Triangled exact{Vec3d(c[0]), Vec3d(c[1]), Vec3d(c[2])};
         if (xcheck::exact_triangle_hit(exact, static_cast<Rayd>(ray)).hit) {
-            return true;
+            out.exact = true;
+            break;
         }
     }
-    return false;
-}
-
-/// True when method M alone (every triangle, no boxes) hits something.
-template <class M>
-bool hits_any_triangle(const TriangleMesh& mesh, const Rayf& ray) {
-    const RayDataOf<M> data = precompute_ray<M>(ray);
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-        const auto c = mesh.corners(i);
-        if (occluded_with<M>(M::prepare({c[0], c[1], c[2]}), ray, data)) {
-            return true;
-        }
-    }
-    return false;
+    return out;
 }
 
 /// Classifies the leaks among `hits` (one per ray of `rays`, traced through some structure with
@@ -66,9 +63,10 @@ void tally_leaks(const TriangleMesh& mesh,
             continue;
         }
         ++tally.leaks;
-        if (hits_an_exact_triangle<M>(mesh, rays[i])) {
+        const MethodAlone alone = method_alone<M>(mesh, rays[i]);
+        if (alone.exact) {
             ++tally.lost;
-        } else if (hits_any_triangle<M>(mesh, rays[i])) {
+        } else if (alone.any) {
             ++tally.outside;
         }
     }

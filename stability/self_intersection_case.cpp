@@ -14,7 +14,9 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtlab::stab {
@@ -35,10 +37,21 @@ struct Start {
     int stratum = 0;
 };
 
+/// v turned into the hemisphere around n (n unit): mirrored in the plane normal to n when it
+/// points away from n.
+Vec3d into_hemisphere(const Vec3d& v, const Vec3d& n) {
+    return dot(v, n) < 0 ? v - n * (2 * dot(v, n)) : v;
+}
+
 /// A unit vector in the hemisphere around n (n unit).
 Vec3d hemisphere(Sampler& rng, const Vec3d& n) {
-    const Vec3d u = rng.unit();
-    return dot(u, n) < 0 ? u - n * (2 * dot(u, n)) : u;
+    return into_hemisphere(rng.unit(), n);
+}
+
+/// d reflected in the plane with unit normal n.
+template <class T>
+Vec3<T> reflect(const Vec3<T>& d, const Vec3<T>& n) {
+    return d - n * (T(2) * dot(d, n));
 }
 
 /// True when both secondary directions leave the surface decisively (cosine with the normal at
@@ -49,6 +62,47 @@ bool decisive(const Start<T>& s) {
     const Vec3d n(s.n);
     return dot(normalize(Vec3d(s.reflect)), n) >= 1e-2 &&
            dot(normalize(Vec3d(s.target) - Vec3d(s.p)), n) >= 1e-2;
+}
+
+/// The decisive starts of some samples, and how many samples gave none.
+template <class T>
+struct Starts {
+    std::vector<Start<T>> starts;
+    std::size_t missed = 0;   ///< the primary ray missed (or its hit point has no normal)
+    std::size_t grazing = 0;  ///< not decisive
+};
+
+/// The starts of samples 0 .. n-1: start_of(i) gives sample i's start, or nothing when its
+/// primary ray missed; starts that are not decisive are counted and left out.
+template <class T, class StartOf>
+Starts<T> collect_starts(std::size_t n, const StartOf& start_of) {
+    Starts<T> out;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::optional<Start<T>> s = start_of(i);
+        if (!s) {
+            ++out.missed;
+        } else if (!decisive(*s)) {
+            ++out.grazing;
+        } else {
+            out.starts.push_back(*s);
+        }
+    }
+    return out;
+}
+
+/// "<m> primary misses and <g> grazing starts skipped", with `also` (if any) among them.
+template <class T>
+std::string skipped_note(const Starts<T>& k, const std::string& also = {}) {
+    const std::string misses = std::to_string(k.missed) + " primary misses";
+    const std::string grazing = std::to_string(k.grazing) + " grazing starts";
+    return (also.empty() ? misses + " and " + grazing : misses + ", " + grazing + " and " + also) +
+           " skipped";
+}
+
+/// self_hit for policy_rows: method M's any-hit test against the start's own shape.
+template <class M>
+auto own_shape_hit(const std::vector<typename M::Prepared>& prep) {
+    return [&prep](std::uint32_t shape, const auto& ray) { return M::occluded(prep[shape], ray); };
 }
 
 /// Secondary rays of the start in precision T under a policy: the reflected ray ([0, inf)) and the
@@ -116,11 +170,11 @@ double log_uniform(Sampler& rng) {
     return std::pow(10.0, rng.uniform(-8, 8));
 }
 
-/// The random triangles of triangle_rows with their primary rays, strata (0: 1 <= |c| / size <=
-/// 1e4) and shadow directions and lengths, and the count of those rounding collapsed.
-template <class T>
-struct TriangleCases {
-    std::vector<Triangle<T>> tris;
+/// Random shapes with their primary rays, strata (0: 1 <= |c| / size <= 1e4, c: the shape's
+/// centre), shadow directions and lengths, and the count of shapes that rounding collapsed.
+template <class T, class Shape>
+struct RandomCases {
+    std::vector<Shape> shapes;
     std::vector<Ray<T>> primaries;
     std::vector<int> strata;
     std::vector<Vec3d> shadow_dirs;
@@ -128,30 +182,23 @@ struct TriangleCases {
     std::size_t degenerate = 0;
 };
 
-/// opt.rays triangles for triangle_rows, as it describes them.
-template <class T>
-TriangleCases<T> triangle_cases(const Options& opt) {
-    Sampler rng(opt.seed, std::is_same_v<T, float> ? 500 : 600);
-    TriangleCases<T> k;
-    while (k.tris.size() < opt.rays) {
+/// opt.rays random shapes from the stream: centre c = unit * |c| and size, both log-uniform in
+/// [1e-8, 1e8]; make(rng, c, size) draws the shape (rounded to T) and its primary ray, or nothing
+/// when rounding collapsed the shape. Shadow directions are uniform, lengths size * 10^[-1, 1].
+template <class T, class Shape, class Make>
+RandomCases<T, Shape> random_cases(const Options& opt, std::uint64_t stream, const Make& make) {
+    Sampler rng(opt.seed, stream);
+    RandomCases<T, Shape> k;
+    while (k.shapes.size() < opt.rays) {
         const Vec3d c = rng.unit() * log_uniform(rng);
         const double size = log_uniform(rng);
-        const Triangle<T> tri{Vec3<T>(c + rng.unit() * size), Vec3<T>(c + rng.unit() * size),
-                              Vec3<T>(c + rng.unit() * size)};
-        if (is_degenerate(tri.p0, tri.p1, tri.p2)) {
-            ++k.degenerate;  // collapsed by rounding to T: no surface to leave
+        const std::optional<std::pair<Shape, Ray<T>>> made = make(rng, c, size);
+        if (!made) {
+            ++k.degenerate;
             continue;
         }
-        double b1 = rng.uniform(0, 1), b2 = rng.uniform(0, 1);
-        if (b1 + b2 > 1) {
-            b1 = 1 - b1;
-            b2 = 1 - b2;
-        }
-        const Vec3d p0(tri.p0), p1(tri.p1), p2(tri.p2);
-        const Vec3d aim = p0 + (p1 - p0) * b1 + (p2 - p0) * b2;
-        const Vec3d org = aim + rng.unit() * (3 * size);
-        k.tris.push_back(tri);
-        k.primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
+        k.shapes.push_back(made->first);
+        k.primaries.push_back(made->second);
         k.strata.push_back(size <= length(c) && length(c) <= 1e4 * size ? 0 : 1);
         k.shadow_dirs.push_back(rng.unit());
         k.shadow_len.push_back(size * std::pow(10.0, rng.uniform(-1, 1)));
@@ -159,125 +206,105 @@ TriangleCases<T> triangle_cases(const Options& opt) {
     return k;
 }
 
-/// Random triangles: centre = unit * |c|, vertices centre + unit * size, |c| and size log-uniform
-/// in [1e-8, 1e8], rounded to T; the primary ray comes from 3 sizes away towards a random interior
-/// point. Per triangle intersector M: rows per policy.
+/// Rows per policy for method M over random cases (stratified). A start is the primary's hit:
+/// frame(i, prepared shape, hit, start) sets its point and outside normal (false: no normal);
+/// the reflected primary, and a shadow target along the case's shadow direction turned outside.
+template <class T, class M, class Shape, class Frame>
+void random_case_rows(const RandomCases<T, Shape>& k,
+                      const Frame& frame,
+                      const std::string& case_name,
+                      const std::string& label,
+                      const std::string& also_skipped,
+                      std::vector<Row>& rows) {
+    std::vector<typename M::Prepared> prep;
+    for (const Shape& shape : k.shapes) {
+        prep.push_back(M::prepare(shape));
+    }
+    const Starts<T> st =
+        collect_starts<T>(k.shapes.size(), [&](std::size_t i) -> std::optional<Start<T>> {
+            const auto hit = M::intersect(prep[i], k.primaries[i]);
+            Start<T> s;
+            s.shape = static_cast<std::uint32_t>(i);
+            if (!hit || !frame(i, prep[i], *hit, s)) {
+                return std::nullopt;
+            }
+            s.reflect = reflect(k.primaries[i].dir, s.n);
+            const Vec3d sd = into_hemisphere(k.shadow_dirs[i], Vec3d(s.n));
+            s.target = Vec3<T>(Vec3d(s.p) + sd * k.shadow_len[i]);
+            s.stratum = k.strata[i];
+            return s;
+        });
+    policy_rows<T>(st.starts, own_shape_hit<M>(prep), case_name, label,
+                   skipped_note(st, also_skipped), true, rows);
+}
+
+/// Random triangles: vertices centre + unit * size, rounded to T; the primary ray comes from 3
+/// sizes away towards a random interior point. Per triangle intersector M: rows per policy.
 template <class T>
 void triangle_rows(const Options& opt, std::vector<Row>& rows) {
-    const TriangleCases<T> k = triangle_cases<T>(opt);
-    const auto& [tris, primaries, strata, shadow_dirs, shadow_len, degenerate] = k;
+    const auto k = random_cases<T, Triangle<T>>(
+        opt, std::is_same_v<T, float> ? 500 : 600,
+        [](Sampler& rng, const Vec3d& c,
+           double size) -> std::optional<std::pair<Triangle<T>, Ray<T>>> {
+            const Triangle<T> tri{Vec3<T>(c + rng.unit() * size), Vec3<T>(c + rng.unit() * size),
+                                  Vec3<T>(c + rng.unit() * size)};
+            if (is_degenerate(tri.p0, tri.p1, tri.p2)) {
+                return std::nullopt;  // collapsed by rounding to T: no surface to leave
+            }
+            double b1 = rng.uniform(0, 1), b2 = rng.uniform(0, 1);
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
+            const Vec3d p0(tri.p0), p1(tri.p1), p2(tri.p2);
+            const Vec3d aim = p0 + (p1 - p0) * b1 + (p2 - p0) * b2;
+            const Vec3d org = aim + rng.unit() * (3 * size);
+            return std::pair{tri, Ray<T>{Vec3<T>(org), Vec3<T>(aim - org)}};
+        });
+    const std::string collapsed = std::to_string(k.degenerate) + " triangles collapsed by rounding";
     for_each_triangle_intersector<T>([&]<class M>() {
         for (const bool bary : {false, true}) {
-            std::vector<typename M::Prepared> prep;
-            std::vector<Start<T>> starts;
-            std::size_t missed = 0, grazing = 0;
-            for (std::size_t i = 0; i < tris.size(); ++i) {
-                prep.push_back(M::prepare(tris[i]));
-                const auto hit = M::intersect(prep.back(), primaries[i]);
-                if (!hit) {
-                    ++missed;
-                    continue;
-                }
-                Start<T> s;
-                s.shape = static_cast<std::uint32_t>(i);
+            const auto frame = [&](std::size_t i, const auto&, const auto& hit, Start<T>& s) {
+                const Triangle<T>& tri = k.shapes[i];
+                const Ray<T>& primary = k.primaries[i];
                 // The renderer's hit point o + t d (trace/surface.cpp), or the barycentric point
                 // Wächter & Binder assume (its error is relative to the vertices, not the ray
                 // length).
-                s.p = bary ? tris[i].p0 * (T(1) - hit->u - hit->v) + tris[i].p1 * hit->u +
-                                 tris[i].p2 * hit->v
-                           : primaries[i].at(hit->t);
-                s.n = normalize(cross(tris[i].p1 - tris[i].p0, tris[i].p2 - tris[i].p0));
-                if (dot(s.n, primaries[i].dir) > T(0)) {
+                s.p = bary ? tri.p0 * (T(1) - hit.u - hit.v) + tri.p1 * hit.u + tri.p2 * hit.v
+                           : primary.at(hit.t);
+                s.n = normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
+                if (dot(s.n, primary.dir) > T(0)) {
                     s.n = -s.n;
                 }
-                const Vec3<T>& d = primaries[i].dir;
-                s.reflect = d - s.n * (T(2) * dot(d, s.n));
-                const Vec3d nd(s.n);
-                const Vec3d sd = dot(shadow_dirs[i], nd) < 0
-                                     ? shadow_dirs[i] - nd * (2 * dot(shadow_dirs[i], nd))
-                                     : shadow_dirs[i];
-                s.target = Vec3<T>(Vec3d(s.p) + sd * shadow_len[i]);
-                s.stratum = strata[i];
-                if (!decisive(s)) {
-                    ++grazing;
-                    continue;
-                }
-                starts.push_back(s);
-            }
-            const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
-                return M::occluded(prep[shape], ray);
+                return true;
             };
-            policy_rows<T>(starts, self_hit, "self_intersection/triangles",
-                           std::string(M::name) + (bary ? " p=barycentric" : " p=o+td"),
-                           std::to_string(missed) + " primary misses, " + std::to_string(grazing) +
-                               " grazing starts and " + std::to_string(degenerate) +
-                               " triangles collapsed by rounding skipped",
-                           true, rows);
+            random_case_rows<T, M>(k, frame, "self_intersection/triangles",
+                                   std::string(M::name) + (bary ? " p=barycentric" : " p=o+td"),
+                                   collapsed, rows);
         }
     });
 }
 
-/// Random spheres: centre = unit * |c|, radius r, both log-uniform in [1e-8, 1e8], rounded to T;
-/// primary rays from 3 r away towards a point within 0.9 r of the centre.
+/// Random spheres: radius r = size, rounded to T; primary rays from 3 r away towards a point
+/// within 0.9 r of the centre.
 template <class T>
 void sphere_rows(const Options& opt, std::vector<Row>& rows) {
-    Sampler rng(opt.seed, std::is_same_v<T, float> ? 510 : 610);
-    std::vector<Sphere<T>> spheres;
-    std::vector<Ray<T>> primaries;
-    std::vector<int> strata;
-    std::vector<Vec3d> shadow_dirs;
-    std::vector<double> shadow_len;
-    for (std::size_t i = 0; i < opt.rays; ++i) {
-        const Vec3d c = rng.unit() * log_uniform(rng);
-        const double r = log_uniform(rng);
-        const Vec3d aim = c + rng.ball(0.9 * r);
-        const Vec3d org = c + rng.unit() * (3 * r);
-        spheres.push_back({Vec3<T>(c), static_cast<T>(r)});
-        primaries.push_back({Vec3<T>(org), Vec3<T>(aim - org)});
-        strata.push_back(r <= length(c) && length(c) <= 1e4 * r ? 0 : 1);
-        shadow_dirs.push_back(rng.unit());
-        shadow_len.push_back(r * std::pow(10.0, rng.uniform(-1, 1)));
-    }
+    const auto k = random_cases<T, Sphere<T>>(
+        opt, std::is_same_v<T, float> ? 510 : 610,
+        [](Sampler& rng, const Vec3d& c, double r) -> std::optional<std::pair<Sphere<T>, Ray<T>>> {
+            const Vec3d aim = c + rng.ball(0.9 * r);
+            const Vec3d org = c + rng.unit() * (3 * r);
+            return std::pair{Sphere<T>{Vec3<T>(c), static_cast<T>(r)},
+                             Ray<T>{Vec3<T>(org), Vec3<T>(aim - org)}};
+        });
     for_each_sphere_method<T>([&]<class M>() {
-        std::vector<typename M::Prepared> prep;
-        std::vector<Start<T>> starts;
-        std::size_t missed = 0, grazing = 0;
-        for (std::size_t i = 0; i < spheres.size(); ++i) {
-            prep.push_back(M::prepare(spheres[i]));
-            const auto hit = M::intersect(prep.back(), primaries[i]);
-            if (!hit) {
-                ++missed;
-                continue;
-            }
-            Start<T> s;
-            s.shape = static_cast<std::uint32_t>(i);
-            s.p = primaries[i].at(hit->t);
-            s.n = sphere_normal(prep.back(), s.p);
-            if (!is_finite(s.n)) {
-                ++missed;  // hit point rounded onto the centre: no normal
-                continue;
-            }
-            const Vec3<T>& d = primaries[i].dir;
-            s.reflect = d - s.n * (T(2) * dot(d, s.n));
-            const Vec3d nd(s.n);
-            const Vec3d sd = dot(shadow_dirs[i], nd) < 0
-                                 ? shadow_dirs[i] - nd * (2 * dot(shadow_dirs[i], nd))
-                                 : shadow_dirs[i];
-            s.target = Vec3<T>(Vec3d(s.p) + sd * shadow_len[i]);
-            s.stratum = strata[i];
-            if (!decisive(s)) {
-                ++grazing;
-                continue;
-            }
-            starts.push_back(s);
-        }
-        const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
-            return M::occluded(prep[shape], ray);
+        const auto frame = [&](std::size_t i, const auto& prep, const auto& hit, Start<T>& s) {
+            s.p = k.primaries[i].at(hit.t);
+            s.n = sphere_normal(prep, s.p);
+            return is_finite(s.n);  // false: hit point rounded onto the centre, no normal
         };
-        policy_rows<T>(starts, self_hit, "self_intersection/spheres", std::string(M::name),
-                       std::to_string(missed) + " primary misses and " + std::to_string(grazing) +
-                           " grazing starts skipped",
-                       true, rows);
+        random_case_rows<T, M>(k, frame, "self_intersection/spheres", std::string(M::name), {},
+                               rows);
     });
 }
 
@@ -323,36 +350,24 @@ void flake_sphere_rows(const Options& opt,
             for (const SphereObject& s : scene.spheres) {
                 prep.push_back(M::prepare(Sphere<T>{Vec3<T>(s.center), static_cast<T>(s.radius)}));
             }
-            std::vector<Start<T>> starts;
-            std::size_t missed = 0, grazing = 0;
-            for (std::size_t i = 0; i < primaries.size(); ++i) {
-                const auto hit = M::intersect(prep[which[i]], primaries[i]);
-                if (!hit) {
-                    ++missed;
-                    continue;
-                }
-                Start<T> s;
-                s.shape = which[i];
-                s.p = primaries[i].at(hit->t);
-                s.n = sphere_normal(prep[which[i]], s.p);
-                const Vec3<T>& d = primaries[i].dir;
-                s.reflect = d - s.n * (T(2) * dot(d, s.n));
-                const double r = static_cast<double>(scene.spheres[which[i]].radius);
-                s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d(s.n)) *
-                                                    (r * std::pow(10.0, rng.uniform(-2, 0))));
-                if (!decisive(s)) {
-                    ++grazing;
-                    continue;
-                }
-                starts.push_back(s);
-            }
-            const auto self_hit = [&](std::uint32_t shape, const Ray<T>& ray) {
-                return M::occluded(prep[shape], ray);
-            };
-            policy_rows<T>(starts, self_hit, case_name, label + " " + std::string(M::name),
-                           std::to_string(missed) + " primary misses and " +
-                               std::to_string(grazing) + " grazing starts skipped",
-                           false, rows);
+            const Starts<T> st =
+                collect_starts<T>(primaries.size(), [&](std::size_t i) -> std::optional<Start<T>> {
+                    const auto hit = M::intersect(prep[which[i]], primaries[i]);
+                    if (!hit) {
+                        return std::nullopt;
+                    }
+                    Start<T> s;
+                    s.shape = which[i];
+                    s.p = primaries[i].at(hit->t);
+                    s.n = sphere_normal(prep[which[i]], s.p);
+                    s.reflect = reflect(primaries[i].dir, s.n);
+                    const double r = static_cast<double>(scene.spheres[which[i]].radius);
+                    s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d(s.n)) *
+                                                        (r * std::pow(10.0, rng.uniform(-2, 0))));
+                    return s;
+                });
+            policy_rows<T>(st.starts, own_shape_hit<M>(prep), case_name,
+                           label + " " + std::string(M::name), skipped_note(st), false, rows);
         });
     }
 }
@@ -381,40 +396,34 @@ void flake_floor_rows(const Options& opt,
     }
     for_each_triangle_intersector<T>([&]<class M>() {
         const std::array<typename M::Prepared, 2> prep{M::prepare(floor[0]), M::prepare(floor[1])};
-        std::vector<Start<T>> starts;
-        std::size_t missed = 0, grazing = 0;
-        for (const Ray<T>& ray : primaries) {
-            Ray<T> r = ray;
-            std::optional<PrimHit<T>> best;
-            for (const auto& p : prep) {
-                if (const auto h = M::intersect(p, r)) {
-                    best = h;
-                    r.tmax = h->t;
+        const Starts<T> st =
+            collect_starts<T>(primaries.size(), [&](std::size_t i) -> std::optional<Start<T>> {
+                const Ray<T>& ray = primaries[i];
+                Ray<T> r = ray;
+                std::optional<PrimHit<T>> best;
+                for (const auto& p : prep) {
+                    if (const auto h = M::intersect(p, r)) {
+                        best = h;
+                        r.tmax = h->t;
+                    }
                 }
-            }
-            if (!best) {
-                ++missed;
-                continue;
-            }
-            Start<T> s;
-            s.p = ray.at(best->t);
-            s.n = {T(0), T(0), T(1)};
-            s.reflect = {ray.dir.x, ray.dir.y, -ray.dir.z};
-            s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d{0, 0, 1}) *
-                                                std::pow(10.0, rng.uniform(-3, 0)));
-            if (!decisive(s)) {
-                ++grazing;
-                continue;
-            }
-            starts.push_back(s);
-        }
+                if (!best) {
+                    return std::nullopt;
+                }
+                Start<T> s;
+                s.p = ray.at(best->t);
+                s.n = {T(0), T(0), T(1)};
+                s.reflect = {ray.dir.x, ray.dir.y, -ray.dir.z};
+                s.target = Vec3<T>(Vec3d(s.p) + hemisphere(rng, Vec3d{0, 0, 1}) *
+                                                    std::pow(10.0, rng.uniform(-3, 0)));
+                return s;
+            });
         const auto self_hit = [&](std::uint32_t, const Ray<T>& ray) {
             return M::occluded(prep[0], ray) || M::occluded(prep[1], ray);
         };
-        policy_rows<T>(starts, self_hit, case_name, "root-on-floor(floor) " + std::string(M::name),
-                       std::to_string(missed) + " primary misses and " + std::to_string(grazing) +
-                           " grazing starts skipped",
-                       false, rows);
+        policy_rows<T>(st.starts, self_hit, case_name,
+                       "root-on-floor(floor) " + std::string(M::name), skipped_note(st), false,
+                       rows);
     });
 }
 
