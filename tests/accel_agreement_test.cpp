@@ -18,23 +18,6 @@
 namespace rtlab {
 namespace {
 
-/// The oracle's answer for one ray.
-struct Answer {
-    Hit hit;
-    bool occluded = false;
-};
-
-std::vector<Answer> oracle_answers(const test::Soup& soup, const std::vector<Rayf>& rays) {
-    const BruteForce oracle = BruteForce::build(soup.input());
-    std::vector<Answer> out(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        Rayf r = rays[i];
-        oracle.intersect(r, soup.closest_hit(out[i].hit));
-        out[i].occluded = oracle.occluded(rays[i], soup.any_hit());
-    }
-    return out;
-}
-
 /// True when both hold the same structure type and compare equal (structures without == are
 /// reported equal, so this only checks those that can be compared).
 bool same_structure(const AnyAccel& a, const AnyAccel& b) {
@@ -51,62 +34,16 @@ bool same_structure(const AnyAccel& a, const AnyAccel& b) {
     });
 }
 
-/// Checks one structure against the oracle's answers, for normal and robust traversal. The
-/// accel's closest hit must have the oracle's t (exactly equal except for rounding of equal
-/// distances); a different primitive is only allowed at an exact tie, checked by re-testing it.
-template <class A>
-void check_against_oracle(const A& accel,
-                          const test::Soup& soup,
-                          const std::vector<Rayf>& rays,
-                          const std::vector<Answer>& expected) {
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Rayf& ray = rays[i];
-        CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
-                ray.tmax);
-        const Hit& want = expected[i].hit;
-
-        Hit robust;
-        Rayf rr = ray;
-        const bool robust_hit = accel.template intersect<true>(rr, soup.closest_hit(robust));
-        REQUIRE(robust_hit == want.valid());
-        Hit normal;
-        Rayf rn = ray;
-        const bool normal_hit = accel.intersect(rn, soup.closest_hit(normal));
-        // Robust traversal finds everything normal traversal finds.
-        if (normal_hit) {
-            REQUIRE(robust_hit);
-            REQUIRE(robust.t <= normal.t);
-        }
-        if (soup.kind == test::SoupKind::boxes) {
-            // Box primitives: a node's computed slab interval contains its children's, so even
-            // the unpadded traversal finds every hit.
-            REQUIRE(normal_hit == want.valid());
-        }
-        if (want.valid()) {
-            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
-            if (robust.prim != want.prim) {
-                const auto again = soup.hit(robust.prim, ray);
-                REQUIRE(again.has_value());
-                CHECK(again->t == want.t);  // an exact tie
-            }
-        }
-        CHECK(accel.template occluded<true>(ray, soup.any_hit()) == expected[i].occluded);
-        if (soup.kind == test::SoupKind::boxes) {
-            CHECK(accel.occluded(ray, soup.any_hit()) == expected[i].occluded);
-        }
-        CHECK(expected[i].occluded == want.valid());
-    }
-}
-
 /// Builds every registered structure on soup, requires it to be valid and checks it against the
 /// oracle's answers on rays.
 void check_every_structure(const test::Soup& soup, const std::vector<Rayf>& rays) {
-    const std::vector<Answer> expected = oracle_answers(soup, rays);
+    const std::vector<test::OracleAnswer> expected = test::oracle_answers(soup, rays);
     for (const AccelEntry& entry : accel_registry()) {
         CAPTURE(entry.name);
         const AnyAccel accel = build_accel(default_spec(entry), soup.input());
         REQUIRE(accel_validate(accel).empty());
-        visit_accel(accel, [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+        visit_accel(
+            accel, [&](const auto& s) { test::check_agrees_with_oracle(s, soup, rays, expected); });
     }
 }
 
@@ -119,7 +56,7 @@ TEST_CASE("every registered structure agrees with brute force", "[accel][agreeme
     CAPTURE(static_cast<int>(kind), count, seed);
     const test::Soup soup = test::random_soup(kind, seed, count);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, count >= 500 ? 400 : 200);
-    const std::vector<Answer> expected = oracle_answers(soup, rays);
+    const std::vector<test::OracleAnswer> expected = test::oracle_answers(soup, rays);
 
     for (const AccelEntry& entry : accel_registry()) {
         for (const AccelSpec& spec : test::default_and_varied_specs(entry)) {
@@ -127,8 +64,9 @@ TEST_CASE("every registered structure agrees with brute force", "[accel][agreeme
             const AnyAccel accel = build_accel(spec, soup.input());
             REQUIRE(accel_validate(accel).empty());
             REQUIRE(same_structure(accel, build_accel(spec, soup.input())));
-            visit_accel(accel,
-                        [&](const auto& s) { check_against_oracle(s, soup, rays, expected); });
+            visit_accel(accel, [&](const auto& s) {
+                test::check_agrees_with_oracle(s, soup, rays, expected);
+            });
         }
     }
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Catch2 checks shared by the acceleration-structure tests: agreement of one structure with the
-// brute-force oracle on a ray set, and the rejection of a ray by both queries.
+// brute-force oracle on a ray set (one rule for every test), and the rejection of a ray by both
+// queries.
 
 #include "accel/any_accel.h"
 #include "accel/brute_force.h"
@@ -83,40 +84,79 @@ inline std::vector<AccelSpec> registry_specs() {
     return out;
 }
 
-/// Checks that closest hit (normal and robust) and any hit (normal and robust) of accel agree
-/// with brute force on every ray: same hit or miss, same t (a different primitive only at an
-/// exact tie, checked by re-testing it), same occlusion.
-template <class A>
-void check_agrees_with_brute_force(const A& accel,
-                                   const Soup& soup,
-                                   const std::vector<Rayf>& rays) {
+/// The brute-force oracle's answer for one ray.
+struct OracleAnswer {
+    Hit hit;                ///< closest hit (prim == invalid_id: a miss)
+    bool occluded = false;  ///< any-hit answer
+};
+
+/// The oracle's answers for every ray, computed once for all the structures checked against them.
+inline std::vector<OracleAnswer> oracle_answers(const Soup& soup, const std::vector<Rayf>& rays) {
     const BruteForce oracle = BruteForce::build(soup.input());
+    std::vector<OracleAnswer> out(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        Rayf r = rays[i];
+        oracle.intersect(r, soup.closest_hit(out[i].hit));
+        out[i].occluded = oracle.occluded(rays[i], soup.any_hit());
+    }
+    return out;
+}
+
+/// Checks that got, a closest hit of ray, is the oracle's closest hit want (which hits): the same
+/// t up to rounding of equal distances, on want's primitive or on one at an exact tie (re-tested).
+inline void check_same_closest_hit(const Soup& soup,
+                                   const Rayf& ray,
+                                   const Hit& want,
+                                   const Hit& got) {
+    CHECK(got.t == Approx(want.t).epsilon(1e-6));
+    if (got.prim != want.prim) {
+        const auto again = soup.hit(got.prim, ray);
+        REQUIRE(again.has_value());
+        CHECK(again->t == want.t);  // an exact tie
+    }
+}
+
+/// Checks accel against the oracle's answers `expected` (oracle_answers(soup, rays)) on every
+/// ray, with plain and robust traversal alike: the oracle's hit or miss, its closest hit
+/// (check_same_closest_hit) and its occlusion; robust's closest hit is never farther than plain's.
+/// Plain traversal is held to the oracle too: it can lose a triangle hit on a box face that its
+/// unpadded slab test rounds to a miss (the stability suite counts such rays on edge-aimed sets),
+/// but every registry row meets the rule on random_rays, rays from primitive box faces included.
+template <class A>
+void check_agrees_with_oracle(const A& accel,
+                              const Soup& soup,
+                              const std::vector<Rayf>& rays,
+                              const std::vector<OracleAnswer>& expected) {
+    REQUIRE(expected.size() == rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const Rayf& ray = rays[i];
         CAPTURE(i, ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin,
                 ray.tmax);
-        Hit want, normal, robust;
-        Rayf ro = ray, rn = ray, rr = ray;
-        const bool want_hit = oracle.intersect(ro, soup.closest_hit(want));
-        const bool normal_hit = accel.intersect(rn, soup.closest_hit(normal));
+        const Hit& want = expected[i].hit;
+        CHECK(expected[i].occluded == want.valid());  // the oracle's two queries agree
+
+        Hit robust, normal;
+        Rayf rr = ray, rn = ray;
         const bool robust_hit = accel.template intersect<true>(rr, soup.closest_hit(robust));
-        REQUIRE(normal_hit == want_hit);
-        REQUIRE(robust_hit == want_hit);
-        if (want_hit) {
-            CHECK(normal.t == Approx(want.t).epsilon(1e-6));
-            CHECK(robust.t == Approx(want.t).epsilon(1e-6));
-            for (const Hit& h : {normal, robust}) {
-                if (h.prim != want.prim) {
-                    const auto again = soup.hit(h.prim, ray);
-                    REQUIRE(again.has_value());
-                    CHECK(again->t == want.t);  // an exact tie
-                }
-            }
+        const bool normal_hit = accel.intersect(rn, soup.closest_hit(normal));
+        REQUIRE(robust_hit == want.valid());
+        REQUIRE(normal_hit == want.valid());
+        if (want.valid()) {
+            REQUIRE(robust.t <= normal.t);
+            check_same_closest_hit(soup, ray, want, robust);
+            check_same_closest_hit(soup, ray, want, normal);
         }
-        const bool want_occluded = oracle.occluded(ray, soup.any_hit());
-        CHECK(accel.occluded(ray, soup.any_hit()) == want_occluded);
-        CHECK(accel.template occluded<true>(ray, soup.any_hit()) == want_occluded);
+        CHECK(accel.template occluded<true>(ray, soup.any_hit()) == expected[i].occluded);
+        CHECK(accel.occluded(ray, soup.any_hit()) == expected[i].occluded);
     }
+}
+
+/// check_agrees_with_oracle with the oracle's answers for rays.
+template <class A>
+void check_agrees_with_brute_force(const A& accel,
+                                   const Soup& soup,
+                                   const std::vector<Rayf>& rays) {
+    check_agrees_with_oracle(accel, soup, rays, oracle_answers(soup, rays));
 }
 
 /// Checks that neither the closest-hit nor the any-hit query of ray reports a hit on accel, and
