@@ -68,6 +68,10 @@ std::span<const AccelEntry> accel_registry();
 /// targets benchmark suite, the stability suite's leak cases): specs, not registry rows.
 std::span<const std::string_view> accel_variants();
 
+/// The structure used where none is named (TraceSetup, `rtlab trace` and `rtlab render`, the
+/// secondary rays of generated ray sets): the binned SAH BVH's registry row.
+inline constexpr std::string_view default_accel = "bvh:binned";
+
 /// The row called `name` (a bare name, no parameters), or nullptr.
 const AccelEntry* find_accel(std::string_view name);
 

@@ -38,7 +38,7 @@ namespace {
 struct RenderArgs {
     std::string scene;
     std::string output;
-    std::string accel = "bvh:binned";
+    std::string accel{default_accel};
     std::string method;
     int width = 0;
     int height = 0;
@@ -323,7 +323,8 @@ Command add_render(CLI::App& root) {
                     "Output image: .png (8-bit sRGB) or .exr (linear float); written completely "
                     "or not at all");
     sub->add_option("--accel", a->accel,
-                    "Structure spec NAME[,key=value]... (see rtlab list; default bvh:binned)");
+                    "Structure spec NAME[,key=value]... (see rtlab list; default " +
+                        std::string(default_accel) + ")");
     sub->add_option("--method", a->method,
                     "Intersection method(s), comma-separated, one per primitive family "
                     "(implicit: closed_form, newton, laguerre; see rtlab list)");

@@ -26,7 +26,7 @@ namespace {
 struct TraceArgs {
     std::string scene;
     std::string rays;
-    std::string accel = "bvh:binned";
+    std::string accel{default_accel};
     std::string method;
     bool any_hit = false;
     std::string hits;
@@ -100,7 +100,8 @@ Command add_trace(CLI::App& root) {
         ->required();
     sub->add_option("--accel", a->accel,
                     "Structure spec NAME[,key=value]..., e.g. 'bvh:binned,max_leaf=8' (see rtlab "
-                    "list; default bvh:binned); the JSON names the canonical spec");
+                    "list; default " +
+                        std::string(default_accel) + "); the JSON names the canonical spec");
     std::string defaults;
     for (const MethodFamily& f : method_families()) {
         defaults += (defaults.empty() ? "" : ", ") + std::string(f.methods.front());

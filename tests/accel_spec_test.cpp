@@ -19,6 +19,12 @@
 namespace rtlab {
 namespace {
 
+TEST_CASE("the default structure is a registry row", "[accel][spec]") {
+    const AccelEntry* e = find_accel(default_accel);
+    REQUIRE(e != nullptr);
+    CHECK(e->name == default_accel);
+}
+
 TEST_CASE("a spec names every parameter that takes effect in canonical order, defaults included",
           "[accel][spec]") {
     CHECK(parse_accel_spec("bvh:binned").canonical() ==

@@ -109,8 +109,8 @@ std::vector<Rayf> make_rays(const Scene& scene,
         return rays;
     }
 
-    // Secondary rays start where primary rays hit, traced with the reference setup (a BVH).
-    const SceneTracer tracer(scene, TraceSetup{"bvh:binned", {}, true});
+    // Secondary rays start where primary rays hit, traced with the default structure, robust.
+    const SceneTracer tracer(scene, TraceSetup{std::string(default_accel), {}, true});
     const std::vector<std::uint32_t> base = primitive_id_base(scene);
     const float diag = length(box.diagonal());
     std::vector<Rayf> out;

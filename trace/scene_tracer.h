@@ -4,6 +4,7 @@
 // TBB. Each ray is independent, so results do not depend on the thread count.
 
 #include "accel/accel.h"
+#include "accel/any_accel.h"
 #include "accel/cost_model.h"
 #include "intersect/hit.h"
 #include "scene/scene.h"
@@ -18,7 +19,7 @@ namespace rtlab {
 
 /// How to trace: which structure, which intersection methods, robust traversal or not.
 struct TraceSetup {
-    std::string accel = "bvh:binned";  ///< a structure spec NAME[,key=value]... (accel/spec.h)
+    std::string accel{default_accel};  ///< a structure spec NAME[,key=value]... (accel/spec.h)
     /// Method names (one per family at most); families not named use their default, the first
     /// of their list (method_families()).
     std::vector<std::string> methods;
