@@ -11,24 +11,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab::stab {
 
 namespace {
-
-/// Spheres, rays (rounded to the precision under test, stored in double) and exact answers.
-struct Samples {
-    std::vector<Sphered> spheres;
-    std::vector<Rayd> rays;
-    std::vector<ExactTruth> truth;
-};
-
-template <class T>
-Vec3d round_to(const Vec3d& v) {
-    return Vec3d(Vec3<T>(v));
-}
 
 /// Centre in [-100, 100]^3, radius log-uniform in [1e-2, 1e2], rounded to T.
 template <class T>
@@ -38,22 +25,13 @@ Sphered random_sphere(Sampler& rng) {
             static_cast<double>(static_cast<T>(std::pow(10.0, rng.uniform(-2, 2))))};
 }
 
-void exact_answers(Samples& s) {
-    s.truth.assign(s.rays.size(), ExactTruth{});
-    tbb::parallel_for(std::size_t(0), s.rays.size(), [&](std::size_t i) {
-        const xcheck::ExactRoot e =
-            xcheck::exact_sphere_root(s.spheres[i].center, s.spheres[i].radius, s.rays[i]);
-        s.truth[i] = {e.hit, e.t, true};
-    });
-}
-
 /// kind 0: through the centre from 2 to 100 radii away; 1: origin rounded onto the surface,
 /// window from 0; 2: the same with tmin = 1e-4 r / |d| (a secondary ray's window); 3: origin
 /// inside (an eighth exactly at the centre, the rest within 0.999 r).
 template <class T>
-Samples make_samples(int kind, std::size_t n, std::uint64_t seed, std::uint64_t stream) {
+SphereSamples make_samples(int kind, std::size_t n, std::uint64_t seed, std::uint64_t stream) {
     Sampler rng(seed, stream);
-    Samples s;
+    SphereSamples s;
     for (std::size_t i = 0; i < n; ++i) {
         const Sphered sp = random_sphere<T>(rng);
         Rayd ray;
@@ -75,7 +53,7 @@ Samples make_samples(int kind, std::size_t n, std::uint64_t seed, std::uint64_t 
         s.spheres.push_back(sp);
         s.rays.push_back(ray);
     }
-    exact_answers(s);
+    add_sphere_truth(s);
     return s;
 }
 
@@ -84,7 +62,10 @@ Samples make_samples(int kind, std::size_t n, std::uint64_t seed, std::uint64_t 
 /// max(|t|, r / |d|). With `once` a second query from just past the hit must miss. Where the
 /// exact root lies within 1e-6 r / |d| of tmin the answer is decided by rounding and not judged.
 template <class M>
-Row root_row(const Samples& s, const std::string& case_name, const std::string& label, bool once) {
+Row root_row(const SphereSamples& s,
+             const std::string& case_name,
+             const std::string& label,
+             bool once) {
     using T = typename M::Scalar;
     std::size_t fail = 0, undecided = 0, near_taken = 0, far_taken = 0, missed = 0, second = 0;
     std::vector<double> errs;
@@ -162,7 +143,7 @@ Row root_row(const Samples& s, const std::string& case_name, const std::string& 
 template <class T>
 void run_precision(const Options& opt, std::vector<Row>& rows) {
     const std::uint64_t base = std::is_same_v<T, float> ? 300 : 400;
-    const Samples centre = make_samples<T>(0, opt.rays, opt.seed, base);
+    const SphereSamples centre = make_samples<T>(0, opt.rays, opt.seed, base);
     std::vector<Ray<T>> rays;
     for (const Rayd& r : centre.rays) {
         rays.push_back(static_cast<Ray<T>>(r));
@@ -175,9 +156,9 @@ void run_precision(const Options& opt, std::vector<Row>& rows) {
         rows.push_back(tally_row("centres/through_centre", std::string(M::name), precision_of<T>(),
                                  t, "origin 2-100 radii away"));
     });
-    const Samples surf0 = make_samples<T>(1, opt.rays, opt.seed, base + 1);
-    const Samples surf1 = make_samples<T>(2, opt.rays, opt.seed, base + 2);
-    const Samples inside = make_samples<T>(3, opt.rays, opt.seed, base + 3);
+    const SphereSamples surf0 = make_samples<T>(1, opt.rays, opt.seed, base + 1);
+    const SphereSamples surf1 = make_samples<T>(2, opt.rays, opt.seed, base + 2);
+    const SphereSamples inside = make_samples<T>(3, opt.rays, opt.seed, base + 3);
     for_each_sphere_method<T>([&]<class M>() {
         rows.push_back(root_row<M>(surf0, "centres/on_surface", "tmin=0", false));
         rows.push_back(root_row<M>(surf1, "centres/on_surface", "tmin=1e-4r", false));

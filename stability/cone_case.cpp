@@ -13,7 +13,6 @@
 #include <array>
 #include <cmath>
 #include <string>
-#include <tbb/parallel_for.h>
 #include <type_traits>
 #include <vector>
 
@@ -124,19 +123,10 @@ void run_precision(const Options& opt, std::vector<Row>& rows) {
         for (std::size_t i = 0; i < per_set; ++i) {
             make_sample<T>(set, i, rng, cones[i], rays_d[i]);
         }
-        std::vector<ExactTruth> truth(per_set);
-        tbb::parallel_for(std::size_t(0), per_set, [&](std::size_t i) {
-            const xcheck::ExactRoot e = xcheck::exact_cone_root(cones[i], rays_d[i]);
-            truth[i] = {e.hit, e.t, true};
-        });
-        std::vector<Ray<T>> rays;
-        for (const Rayd& r : rays_d) {
-            rays.push_back(static_cast<Ray<T>>(r));
-        }
-        std::size_t exact_hits = 0;
-        for (const ExactTruth& t : truth) {
-            exact_hits += t.hit ? 1 : 0;
-        }
+        const std::vector<ExactTruth> truth = exact_truths(
+            per_set, [&](std::size_t i) { return xcheck::exact_cone_root(cones[i], rays_d[i]); });
+        const std::vector<Ray<T>> rays = rays_in<T>(rays_d);
+        const std::size_t exact_hits = exact_hit_count(truth);
         for_each_cone_method<T>([&]<class M>() {
             const MethodTally t = judge<M>(rays, truth, [&](std::size_t i) {
                 const Cone<double>& c = cones[i];

@@ -1,15 +1,18 @@
 #pragma once
 // Judging intersection methods on one-shape-one-ray samples against exact answers
 // (crosscheck/exact.h): hit/miss disagreements, NaN results, relative error of t, ns per ray.
-// Shared by the far_small, centres, needles and implicit cases.
+// Shared by the far_small, centres, needles, implicit and cone cases.
 
+#include "crosscheck/exact.h"
 #include "intersect/method.h"
+#include "intersect/sphere/sphere.h"
 #include "stability/case_util.h"
 #include "stability/stability.h"
 
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <tbb/parallel_for.h>
 #include <type_traits>
 #include <vector>
 
@@ -22,6 +25,66 @@ struct ExactTruth {
     double t = 0;
     bool defined = true;
 };
+
+/// An exact root as an answer (always defined).
+inline ExactTruth to_truth(const xcheck::ExactRoot& e) {
+    return {e.hit, e.t, true};
+}
+
+/// An exact triangle answer (undefined where the ray meets the boundary or lies in the plane).
+inline ExactTruth to_truth(const xcheck::ExactTriangleHit& e) {
+    return {e.hit, e.t, !e.boundary};
+}
+
+/// The exact answers of samples 0 .. n-1, computed in parallel: exact(i) is sample i's
+/// xcheck::ExactRoot or xcheck::ExactTriangleHit.
+template <class Exact>
+std::vector<ExactTruth> exact_truths(std::size_t n, const Exact& exact) {
+    std::vector<ExactTruth> out(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { out[i] = to_truth(exact(i)); });
+    return out;
+}
+
+/// How many of the answers are hits.
+inline std::size_t exact_hit_count(const std::vector<ExactTruth>& truth) {
+    std::size_t n = 0;
+    for (const ExactTruth& t : truth) {
+        n += t.hit ? 1 : 0;
+    }
+    return n;
+}
+
+/// v rounded to precision T and back (exactly).
+template <class T>
+Vec3d round_to(const Vec3d& v) {
+    return Vec3d(Vec3<T>(v));
+}
+
+/// Rays generated in double (already rounded to T) in precision T, for judge().
+template <class T>
+std::vector<Ray<T>> rays_in(const std::vector<Rayd>& rays_d) {
+    std::vector<Ray<T>> rays;
+    rays.reserve(rays_d.size());
+    for (const Rayd& r : rays_d) {
+        rays.push_back(static_cast<Ray<T>>(r));
+    }
+    return rays;
+}
+
+/// Spheres and rays of one sample set, already rounded to the precision under test (stored in
+/// double, exactly), with the exact answers (set by add_sphere_truth).
+struct SphereSamples {
+    std::vector<Sphered> spheres;
+    std::vector<Rayd> rays;
+    std::vector<ExactTruth> truth;
+};
+
+/// Sets s.truth to the exact sphere answer of every sample.
+inline void add_sphere_truth(SphereSamples& s) {
+    s.truth = exact_truths(s.rays.size(), [&](std::size_t i) {
+        return xcheck::exact_sphere_root(s.spheres[i].center, s.spheres[i].radius, s.rays[i]);
+    });
+}
 
 /// "float" or "double".
 template <class T>

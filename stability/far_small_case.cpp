@@ -13,36 +13,11 @@
 #include <numbers>
 #include <string>
 #include <string_view>
-#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab::stab {
 
 namespace {
-
-/// Spheres and rays of one sample set, already rounded to the precision under test (stored in
-/// double, exactly), with the exact answers.
-struct SphereSamples {
-    std::vector<Sphered> spheres;
-    std::vector<Rayd> rays;
-    std::vector<ExactTruth> truth;
-};
-
-/// Exact answers for every sample, in parallel.
-void sphere_truth(SphereSamples& s) {
-    s.truth.assign(s.rays.size(), ExactTruth{});
-    tbb::parallel_for(std::size_t(0), s.rays.size(), [&](std::size_t i) {
-        const xcheck::ExactRoot e =
-            xcheck::exact_sphere_root(s.spheres[i].center, s.spheres[i].radius, s.rays[i]);
-        s.truth[i] = {e.hit, e.t, true};
-    });
-}
-
-/// v rounded to T and back.
-template <class T>
-Vec3d round_to(const Vec3d& v) {
-    return Vec3d(Vec3<T>(v));
-}
 
 /// Sphere at distance D (log-uniform in [1, 1e3]) of radius D / ratio from an origin in
 /// [-1, 1]^3; the ray aims within 1.2 r of the centre (about 30% miss, some graze).
@@ -60,7 +35,7 @@ SphereSamples far_spheres(double ratio, std::size_t n, std::uint64_t seed, std::
         s.spheres.push_back({round_to<T>(center), static_cast<double>(static_cast<T>(r))});
         s.rays.push_back({round_to<T>(org), round_to<T>(u * rng.uniform(0.5, 2.0))});
     }
-    sphere_truth(s);
+    add_sphere_truth(s);
     return s;
 }
 
@@ -87,7 +62,7 @@ SphereSamples earth(bool grazing, std::size_t n, std::uint64_t seed, std::uint64
         s.spheres.push_back({Vec3d{0, 0, -radius}, radius});
         s.rays.push_back({round_to<T>(org), round_to<T>(dir)});
     }
-    sphere_truth(s);
+    add_sphere_truth(s);
     return s;
 }
 
@@ -146,15 +121,9 @@ void far_triangle_rows(double ratio,
         const Vec3d aim = center + rng.ball(1.2 * size);
         rays_d.push_back({round_to<T>(org), round_to<T>(aim - org)});
     }
-    std::vector<ExactTruth> truth(n);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-        const xcheck::ExactTriangleHit e = xcheck::exact_triangle_hit(tris[i], rays_d[i]);
-        truth[i] = {e.hit, e.t, !e.boundary};
-    });
-    std::vector<Ray<T>> rays;
-    for (const Rayd& r : rays_d) {
-        rays.push_back(static_cast<Ray<T>>(r));
-    }
+    const std::vector<ExactTruth> truth = exact_truths(
+        n, [&](std::size_t i) { return xcheck::exact_triangle_hit(tris[i], rays_d[i]); });
+    const std::vector<Ray<T>> rays = rays_in<T>(rays_d);
     for_each_triangle_method<T>([&]<class M>() {
         const MethodTally t = judge<M>(rays, truth, [&](std::size_t i) {
             return Triangle<T>{Vec3<T>(tris[i].p0), Vec3<T>(tris[i].p1), Vec3<T>(tris[i].p2)};

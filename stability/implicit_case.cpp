@@ -12,7 +12,6 @@
 #include <cmath>
 #include <numbers>
 #include <string>
-#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab::stab {
@@ -91,21 +90,13 @@ void run_precision(const Options& opt, std::vector<Row>& rows) {
         for (std::size_t i = 0; i < per_set; ++i) {
             make_sample<T>(set, rng, tori[i], rays_d[i]);
         }
-        std::vector<ExactTruth> truth(per_set);
-        tbb::parallel_for(std::size_t(0), per_set, [&](std::size_t i) {
-            const xcheck::ExactRoot e = xcheck::exact_first_root(
+        const std::vector<ExactTruth> truth = exact_truths(per_set, [&](std::size_t i) {
+            return xcheck::exact_first_root(
                 xcheck::exact_torus_along(tori[i], rays_d[i].org, rays_d[i].dir), rays_d[i].tmin,
                 rays_d[i].tmax);
-            truth[i] = {e.hit, e.t, true};
         });
-        std::vector<Ray<T>> rays;
-        for (const Rayd& r : rays_d) {
-            rays.push_back(static_cast<Ray<T>>(r));
-        }
-        std::size_t exact_hits = 0;
-        for (const ExactTruth& t : truth) {
-            exact_hits += t.hit ? 1 : 0;
-        }
+        const std::vector<Ray<T>> rays = rays_in<T>(rays_d);
+        const std::size_t exact_hits = exact_hit_count(truth);
         for_each_implicit_method<Torus, T>([&]<class M>() {
             const MethodTally t = judge<M>(rays, truth, [&](std::size_t i) {
                 return Torus<T>{Vec3<T>(tori[i].center), static_cast<T>(tori[i].major),

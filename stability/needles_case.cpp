@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <string>
-#include <tbb/parallel_for.h>
 #include <vector>
 
 namespace rtlab::stab {
@@ -73,15 +72,9 @@ void run_kind(Kind kind,
     for (std::size_t i = 0; i < opt.rays; ++i) {
         make_sample<T>(kind, aspect, rng, tris[i], rays_d[i]);
     }
-    std::vector<ExactTruth> truth(opt.rays);
-    tbb::parallel_for(std::size_t(0), opt.rays, [&](std::size_t i) {
-        const xcheck::ExactTriangleHit e = xcheck::exact_triangle_hit(tris[i], rays_d[i]);
-        truth[i] = {e.hit, e.t, !e.boundary};
-    });
-    std::vector<Ray<T>> rays;
-    for (const Rayd& r : rays_d) {
-        rays.push_back(static_cast<Ray<T>>(r));
-    }
+    const std::vector<ExactTruth> truth = exact_truths(
+        opt.rays, [&](std::size_t i) { return xcheck::exact_triangle_hit(tris[i], rays_d[i]); });
+    const std::vector<Ray<T>> rays = rays_in<T>(rays_d);
     const bool degenerate = kind != Kind::needle;
     std::vector<std::vector<char>> answers;
     for_each_triangle_method<T>([&]<class M>() {
