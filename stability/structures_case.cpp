@@ -157,14 +157,23 @@ Workload split_plane_squares(std::size_t n, std::uint64_t seed) {
     return w;
 }
 
-Workload stadium(std::size_t n, std::uint64_t seed) {
+/// The generated scene `scene` at size 3 with n / 2 of its primary rays, the rest of the rays and
+/// the reference left to the caller.
+Workload generated_workload(
+    const char* scene, std::string name, std::string method, std::size_t n, std::uint64_t seed) {
     gen::GenOptions g;
     g.size = 3;
     Workload w;
-    w.name = "stadium (SF 3), primary + random rays";
-    w.method = "watertight";
-    w.scene = gen::generate("stadium", g);
+    w.name = std::move(name);
+    w.method = std::move(method);
+    w.scene = gen::generate(scene, g);
     w.rays = make_rays(w.scene, RayKind::primary, n / 2, seed);
+    return w;
+}
+
+Workload stadium(std::size_t n, std::uint64_t seed) {
+    Workload w = generated_workload("stadium", "stadium (SF 3), primary + random rays",
+                                    "watertight", n, seed);
     const std::vector<Rayf> more = make_rays(w.scene, RayKind::random, n - n / 2, seed);
     w.rays.insert(w.rays.end(), more.begin(), more.end());
     w.reference = box_free<Watertight<float>>(scene_triangles(w.scene), w.rays);
@@ -172,14 +181,9 @@ Workload stadium(std::size_t n, std::uint64_t seed) {
 }
 
 Workload scales(std::size_t n, std::uint64_t seed) {
-    gen::GenOptions g;
-    g.size = 3;
-    Workload w;
-    w.name = "scales (SF 3, radii 1e-6..1e6), primary + aimed rays";
-    w.method = "stable";
-    w.scene = gen::generate("scales", g);
+    Workload w = generated_workload(
+        "scales", "scales (SF 3, radii 1e-6..1e6), primary + aimed rays", "stable", n, seed);
     Sampler rng(seed, 520);
-    w.rays = make_rays(w.scene, RayKind::primary, n / 2, seed);
     const auto& sp = w.scene.spheres;
     for (std::size_t i = w.rays.size(); i < n; ++i) {
         // From 2..100 radii away towards a random point within 0.99 r of a random centre.
