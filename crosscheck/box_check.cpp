@@ -332,6 +332,24 @@ std::vector<std::string> obb_methods() {
     return method_names(for_each_obb);
 }
 
+namespace {
+
+/// A vector in the box's frame (axes b.axis) in world coordinates.
+Vec3f world(const Obb<float>& b, const Vec3f& p) {
+    return b.axis[0] * p.x + b.axis[1] * p.y + b.axis[2] * p.z;
+}
+
+/// local_ray in the box's own frame (centred, axes b.axis), mapped to world coordinates.
+Rayf world_ray(Rng& rng, RaySet set, const Obb<float>& b) {
+    const Rayf local = local_ray(rng, set, -b.half, b.half);
+    Rayf ray = local;
+    ray.org = b.center + world(b, local.org);
+    ray.dir = world(b, local.dir);
+    return ray;
+}
+
+}  // namespace
+
 std::vector<Row> check_obbs(const Options& opt) {
     select_methods(obb_methods(), opt.methods, "obb");
     Rng rng(opt.seed);
@@ -342,14 +360,11 @@ std::vector<Row> check_obbs(const Options& opt) {
         [&](std::size_t s, std::uint32_t shape) {
             const Obb<float>& b = w.shapes[shape];
             Rayf ray;
-            const auto world = [&](const Vec3f& p) {
-                return b.axis[0] * p.x + b.axis[1] * p.y + b.axis[2] * p.z;
-            };
             const auto set = static_cast<RaySet>(s);
             if (set == axis1_set || set == axis2_set) {
                 // Zero components in world coordinates: parallel to a slab when the box has an
                 // exact world axis (three quarters of the boxes have at least one).
-                const Vec3f target = b.center + world(point_in(rng, -b.half, b.half, 0.25f));
+                const Vec3f target = b.center + world(b, point_in(rng, -b.half, b.half, 0.25f));
                 Vec3f dir = rng.dir();
                 const std::size_t a = rng.below(3);
                 if (set == axis1_set) {
@@ -366,10 +381,7 @@ std::vector<Row> check_obbs(const Options& opt) {
                 ray.org = target - dir * rng.uni(0.5f, 4.0f);
                 ray.dir = dir;
             } else {
-                const Rayf local = local_ray(rng, set, -b.half, b.half);
-                ray = local;
-                ray.org = b.center + world(local.org);
-                ray.dir = world(local.dir);
+                ray = world_ray(rng, set, b);
             }
             return ray;
         });
@@ -382,58 +394,46 @@ namespace {
 /// The box-local sets behind the bench distributions (far is a pushed-back random ray).
 constexpr std::array<RaySet, 4> bench_from{random_set, edges_set, grazing_set, random_set};
 
-}  // namespace
-
-BenchCases<Bounds3f> aabb_bench_cases(std::size_t n, std::uint64_t seed) {
-    Rng rng(seed);
-    BenchCases<Bounds3f> out;
-    out.shapes = make_aabbs(rng, shape_count);
+/// Bench cases of a box kind: n samples per bench set, each on a random one of shapes, its ray
+/// ray_of(rng, box-local set, shape) (pushed far for the far set), judged by oracle.
+template <class Shape, class RayOf, class Oracle>
+BenchCases<Shape> box_bench_cases(
+    Rng& rng, std::vector<Shape> shapes, std::size_t n, const RayOf& ray_of, Oracle oracle) {
+    BenchCases<Shape> out;
+    out.shapes = std::move(shapes);
     for (std::size_t s = 0; s < bench_from.size(); ++s) {
         for (std::size_t j = 0; j < n; ++j) {
             Sample smp;
             smp.shape = rng.below(shape_count);
             smp.set = static_cast<std::uint8_t>(s);
-            const Bounds3f& b = out.shapes[smp.shape];
-            smp.ray = local_ray(rng, bench_from[s], b.lo, b.hi);
+            smp.ray = ray_of(rng, bench_from[s], out.shapes[smp.shape]);
             if (s == bench_far) {
                 smp.ray = push_far(rng, smp.ray);
             }
             out.samples.push_back(smp);
         }
     }
-    Workload<Bounds3f> w{out.shapes, out.samples, {}};
-    compute_truth(w, aabb_truth);
+    Workload<Shape> w{out.shapes, out.samples, {}};
+    compute_truth(w, oracle);
     out.truth = std::move(w.truth);
     return out;
 }
 
+}  // namespace
+
+BenchCases<Bounds3f> aabb_bench_cases(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Bounds3f> boxes = make_aabbs(rng, shape_count);
+    return box_bench_cases(
+        rng, std::move(boxes), n,
+        [](Rng& r, RaySet set, const Bounds3f& b) { return local_ray(r, set, b.lo, b.hi); },
+        aabb_truth);
+}
+
 BenchCases<Obb<float>> obb_bench_cases(std::size_t n, std::uint64_t seed) {
     Rng rng(seed);
-    BenchCases<Obb<float>> out;
-    out.shapes = make_obbs(rng, shape_count);
-    for (std::size_t s = 0; s < bench_from.size(); ++s) {
-        for (std::size_t j = 0; j < n; ++j) {
-            Sample smp;
-            smp.shape = rng.below(shape_count);
-            smp.set = static_cast<std::uint8_t>(s);
-            const Obb<float>& b = out.shapes[smp.shape];
-            const Rayf local = local_ray(rng, bench_from[s], -b.half, b.half);
-            const auto world = [&](const Vec3f& p) {
-                return b.axis[0] * p.x + b.axis[1] * p.y + b.axis[2] * p.z;
-            };
-            smp.ray = local;
-            smp.ray.org = b.center + world(local.org);
-            smp.ray.dir = world(local.dir);
-            if (s == bench_far) {
-                smp.ray = push_far(rng, smp.ray);
-            }
-            out.samples.push_back(smp);
-        }
-    }
-    Workload<Obb<float>> w{out.shapes, out.samples, {}};
-    compute_truth(w, obb_truth);
-    out.truth = std::move(w.truth);
-    return out;
+    std::vector<Obb<float>> boxes = make_obbs(rng, shape_count);
+    return box_bench_cases(rng, std::move(boxes), n, world_ray, obb_truth);
 }
 
 }  // namespace rtlab::xcheck

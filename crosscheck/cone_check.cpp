@@ -258,22 +258,8 @@ BenchCases<Cone<float>> cone_bench_cases(std::size_t n, std::uint64_t seed) {
                                                                 {"rim", bench_edge},
                                                                 {"grazing", bench_grazing},
                                                                 {"far_small", bench_far}}};
-    for (const auto& [name, bench_set] : kept) {
-        for (const ConeSet& set : sets) {
-            if (set.name != name) {
-                continue;
-            }
-            for (std::size_t i = 0; i < set.cases.size(); ++i) {
-                Sample smp;
-                smp.ray = set.cases[i].ray;
-                smp.shape = static_cast<std::uint32_t>(out.shapes.size());
-                smp.set = bench_set;
-                out.shapes.push_back(set.cases[i].cone);
-                out.samples.push_back(smp);
-                out.truth.push_back(set.oracle[i]);
-            }
-        }
-    }
+    add_kept_sets(
+        sets, kept, [](const auto& c) { return c.cone; }, out);
     return out;
 }
 

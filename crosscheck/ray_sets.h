@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace rtlab::xcheck {
@@ -41,6 +42,33 @@ struct BenchCases {
     std::vector<Truth> truth;     ///< exact answer per sample
     bool closest_of_all = false;  ///< true: each ray is tested against all shapes
 };
+
+/// Appends to out the cases of the check's sets that the bench keeps, in kept's order (set name,
+/// bench set): each case's float shape shape_of(case) with one sample of its ray in that bench
+/// set, and the set's exact answer for it. Each Set has `name`, `cases` (with `ray`) and
+/// `oracle` (with `hit` and `t`).
+template <class Shape, class Set, std::size_t N, class ShapeOf>
+void add_kept_sets(const std::vector<Set>& sets,
+                   const std::array<std::pair<const char*, BenchSet>, N>& kept,
+                   const ShapeOf& shape_of,
+                   BenchCases<Shape>& out) {
+    for (const auto& [name, bench_set] : kept) {
+        for (const Set& set : sets) {
+            if (set.name != name) {
+                continue;
+            }
+            for (std::size_t i = 0; i < set.cases.size(); ++i) {
+                Sample smp;
+                smp.ray = set.cases[i].ray;
+                smp.shape = static_cast<std::uint32_t>(out.shapes.size());
+                smp.set = bench_set;
+                out.shapes.push_back(shape_of(set.cases[i]));
+                out.samples.push_back(smp);
+                out.truth.push_back(Truth{set.oracle[i].hit, set.oracle[i].t});
+            }
+        }
+    }
+}
 
 /// A "far" ray made from a near one: the origin moved back along the ray by 1e3 to 1e4 direction
 /// lengths (then rounded to float, so the oracle judges the moved ray), full window [0, inf).

@@ -99,20 +99,10 @@ SphereOracle oracle(const SphereCase& sc) {
     return out;
 }
 
-/// Uniform float in [lo, hi).
-float uni(std::mt19937_64& rng, float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-}
-
 /// Random direction with float components (not normalised: length in [0.5, 2]).
 Vec3f random_dir(std::mt19937_64& rng) {
-    for (;;) {
-        const Vec3f v{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
-        const float l2 = length_squared(v);
-        if (l2 > 0.01f && l2 <= 1) {
-            return v * (uni(rng, 0.5f, 2.0f) / std::sqrt(l2));
-        }
-    }
+    const auto [v, l2] = ball_shell_point(rng);
+    return v * (uni(rng, 0.5f, 2.0f) / std::sqrt(l2));
 }
 
 /// A sphere with centre in [-10, 10]^3 and radius log-uniform in [0.1, 5].
@@ -229,22 +219,8 @@ BenchCases<Sphere<float>> sphere_bench_cases(std::size_t n, std::uint64_t seed) 
     BenchCases<Sphere<float>> out;
     const std::array<std::pair<const char*, BenchSet>, 3> kept{
         {{"random", bench_random}, {"grazing", bench_grazing}, {"far_small", bench_far}}};
-    for (const auto& [name, bench_set] : kept) {
-        for (const SphereSet& set : sets) {
-            if (set.name != name) {
-                continue;
-            }
-            for (std::size_t i = 0; i < set.cases.size(); ++i) {
-                Sample smp;
-                smp.ray = set.cases[i].ray;
-                smp.shape = static_cast<std::uint32_t>(out.shapes.size());
-                smp.set = bench_set;
-                out.shapes.push_back(set.cases[i].sphere);
-                out.samples.push_back(smp);
-                out.truth.push_back({set.oracle[i].hit, set.oracle[i].t});
-            }
-        }
-    }
+    add_kept_sets(
+        sets, kept, [](const auto& c) { return c.sphere; }, out);
     return out;
 }
 
