@@ -59,6 +59,24 @@ private:
     std::mt19937_64 g_;
 };
 
+/// Uniform float in [lo, hi) through the standard library's distribution, as the sphere and
+/// implicit checks draw their sets (their recorded results depend on this mapping).
+inline float uni(std::mt19937_64& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+
+/// A point v of the unit ball outside the ball of radius 0.1, by rejection from the cube (uni),
+/// with its squared length.
+inline std::pair<Vec3f, float> ball_shell_point(std::mt19937_64& rng) {
+    for (;;) {
+        const Vec3f v{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
+        const float l2 = length_squared(v);
+        if (l2 > 0.01f && l2 <= 1) {
+            return {v, l2};
+        }
+    }
+}
+
 /// Rays per set for N sets: an equal split of n, the remainder going to the first sets.
 template <std::size_t N>
 std::array<std::size_t, N> split_rays(std::size_t n) {

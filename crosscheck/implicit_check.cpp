@@ -70,18 +70,10 @@ struct ImplicitSet {
     std::vector<ImplicitOracle> oracle;
 };
 
-float uni(std::mt19937_64& rng, float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-}
-
+/// A random unit vector.
 Vec3f random_unit(std::mt19937_64& rng) {
-    for (;;) {
-        const Vec3f v{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
-        const float l2 = length_squared(v);
-        if (l2 > 0.01f && l2 <= 1) {
-            return v / std::sqrt(l2);
-        }
-    }
+    const auto [v, l2] = ball_shell_point(rng);
+    return v / std::sqrt(l2);
 }
 
 Torus<float> random_surface(std::mt19937_64& rng, const Torus<float>*) {
