@@ -5,6 +5,7 @@
 // sets, not on the ray count, so they also hold for the smaller asan counts.
 #include "crosscheck/checks.h"
 #include "support/oracle_rays.h"
+#include "support/oracle_rows.h"
 
 #include <catch2/catch.hpp>
 
@@ -15,18 +16,7 @@ using namespace rtlab::xcheck;
 
 namespace {
 
-const Row& find_row(const std::vector<Row>& rows,
-                    const std::string& method,
-                    const std::string& precision,
-                    const std::string& set = "all") {
-    for (const Row& r : rows) {
-        if (r.method == method && r.precision == precision && r.set == set) {
-            return r;
-        }
-    }
-    FAIL("no row " << method << " " << precision << " " << set);
-    return rows.front();
-}
+using rtlab::test::find_row;
 
 double agree_rate(const Row& r) {
     return static_cast<double>(r.agree) / static_cast<double>(r.rays);

@@ -4,6 +4,7 @@
 #include "crosscheck/checks.h"
 #include "crosscheck/exact.h"
 #include "support/oracle_rays.h"
+#include "support/oracle_rows.h"
 
 #include <catch2/catch.hpp>
 
@@ -16,18 +17,7 @@ using namespace rtlab;
 
 namespace {
 
-const xcheck::Row& find_row(const std::vector<xcheck::Row>& rows,
-                            const std::string& method,
-                            const std::string& precision,
-                            const std::string& set) {
-    for (const xcheck::Row& r : rows) {
-        if (r.method == method && r.precision == precision && r.set == set) {
-            return r;
-        }
-    }
-    FAIL("no row " << method << " " << precision << " " << set);
-    return rows.front();
-}
+using rtlab::test::find_row;
 
 std::size_t wrong(const xcheck::Row& r) {
     return r.false_hit + r.false_miss;

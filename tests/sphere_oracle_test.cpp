@@ -3,6 +3,7 @@
 // 100,000 rays (g++ 12, x86-64, Debug) and are set with a margin; each says why.
 #include "crosscheck/checks.h"
 #include "support/oracle_rays.h"
+#include "support/oracle_rows.h"
 
 #include <catch2/catch.hpp>
 
@@ -13,18 +14,7 @@ using namespace rtlab;
 
 namespace {
 
-const xcheck::Row& find_row(const std::vector<xcheck::Row>& rows,
-                            const std::string& method,
-                            const std::string& precision,
-                            const std::string& set) {
-    for (const xcheck::Row& r : rows) {
-        if (r.method == method && r.precision == precision && r.set == set) {
-            return r;
-        }
-    }
-    FAIL("no row " << method << " " << precision << " " << set);
-    return rows.front();
-}
+using rtlab::test::find_row;
 
 double wrong_rate(const xcheck::Row& r) {
     return static_cast<double>(r.false_hit + r.false_miss) / static_cast<double>(r.rays);
