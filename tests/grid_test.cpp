@@ -123,18 +123,7 @@ TEST_CASE("grid finds a near hit beyond the first cell of a long primitive", "[a
     // triangle on the ray at x = 5 (nearer) or 9.5 (farther). L is offered in the first cell.
     const float s_x = GENERATE(5.0f, 9.5f);
     CAPTURE(s_x);
-    test::Soup soup;
-    soup.kind = test::SoupKind::triangles;
-    const auto add = [&](Vec3f a, Vec3f b, Vec3f c) {
-        soup.triangles.push_back(MollerTrumbore<float>::prepare({a, b, c}));
-        soup.boxes.push_back(MollerTrumbore<float>::bounds(soup.triangles.back()));
-    };
-    add({0, -1, -0.625f}, {0, 2, -0.625f}, {10, 0.5f, 0.625f});  // L, id 0
-    add({s_x, 0, 0}, {s_x, 1, 0}, {s_x, 0.5f, 1});               // S, id 1
-    for (int i = 0; i < 40; ++i) {
-        const float x = 0.25f * static_cast<float>(i);
-        add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
-    }
+    const test::Soup soup = test::long_primitive_soup(s_x);
     const Grid grid = build_grid(soup.input());
     REQUIRE(grid.res[0] > 4);
     const Rayf ray{{-1, 0.5f, 0.5f}, {1, 0, 0}};

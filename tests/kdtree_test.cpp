@@ -337,18 +337,7 @@ TEST_CASE("kd-tree finds a near hit beyond the first leaf of a long primitive", 
     const float s_x = GENERATE(5.0f, 9.5f);
     const bool exact_clip = GENERATE(false, true);
     CAPTURE(s_x, exact_clip);
-    test::Soup soup;
-    soup.kind = test::SoupKind::triangles;
-    const auto add = [&](Vec3f a, Vec3f b, Vec3f c) {
-        soup.triangles.push_back(MollerTrumbore<float>::prepare({a, b, c}));
-        soup.boxes.push_back(MollerTrumbore<float>::bounds(soup.triangles.back()));
-    };
-    add({0, -1, -0.625f}, {0, 2, -0.625f}, {10, 0.5f, 0.625f});  // L, id 0
-    add({s_x, 0, 0}, {s_x, 1, 0}, {s_x, 0.5f, 1});               // S, id 1
-    for (int i = 0; i < 40; ++i) {
-        const float x = 0.25f * static_cast<float>(i);
-        add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
-    }
+    const test::Soup soup = test::long_primitive_soup(s_x);
     // Slightly slanted too, so the TA^B_rec walk runs (a zero direction component takes the
     // t-value walk).
     const Rayf ray =

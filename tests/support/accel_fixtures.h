@@ -192,6 +192,26 @@ inline Soup lattice_soup(const Vec3f& flat) {
     return soup;
 }
 
+/// A triangle soup where a near hit lies beyond the first cell or leaf of a long primitive, for
+/// the ray from (-1, 0.5, 0.5) along +x: L (id 0), a long slanted triangle spanning x in [0, 10]
+/// that the ray hits at x = 9; S (id 1), a small triangle on the ray at x = s_x; and 40 filler
+/// triangles along x, off the ray, that force cells or splits along it.
+inline Soup long_primitive_soup(float s_x) {
+    Soup soup;
+    soup.kind = SoupKind::triangles;
+    const auto add = [&](Vec3f a, Vec3f b, Vec3f c) {
+        soup.triangles.push_back(MollerTrumbore<float>::prepare({a, b, c}));
+        soup.boxes.push_back(MollerTrumbore<float>::bounds(soup.triangles.back()));
+    };
+    add({0, -1, -0.625f}, {0, 2, -0.625f}, {10, 0.5f, 0.625f});  // L, id 0
+    add({s_x, 0, 0}, {s_x, 1, 0}, {s_x, 0.5f, 1});               // S, id 1
+    for (int i = 0; i < 40; ++i) {
+        const float x = 0.25f * static_cast<float>(i);
+        add({x, 1.8f, 0.6f}, {x + 0.1f, 1.9f, 0.6f}, {x, 1.9f, 0.62f});
+    }
+    return soup;
+}
+
 /// `count` rays for the soup s, cycling through: from outside towards the scene, from inside the
 /// scene box, axis-aligned (two zero direction components), one zero component, from a point on
 /// a primitive box face (a node boundary) along that face or off it, and tight or degenerate
