@@ -31,9 +31,7 @@ namespace {
 using M = SphereStable<float>;
 using Prepared = PreparedSphere<float>;
 
-bool same_bits(float a, float b) {
-    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
+using test::same_bits;
 
 /// Random overlapping spheres in [0, 4]^3 of radii from tiny to large, a duplicate, the unit
 /// sphere at the origin and a sphere of integer centre (exact tangents and surface points).
@@ -216,42 +214,17 @@ void check_inlined(const WideBvh<N>& bvh,
     for (std::size_t k = 0; k < rays.size(); ++k) {
         const Rayf& ray = rays[k];
         const SphereRay<float> rd = M::precompute(ray);
-        Rayf want_ray = ray;
-        std::optional<SlotHit> want;
-        TraversalStats want_st;
-        bvh.template intersect_leaves<IsRobust>(
-            want_ray,
+        test::check_same_as_leaf_callbacks<IsRobust>(
+            bvh, closest, any, k,
             [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
-                const auto h = sphere_soa_closest(soa, first, count, r, rd);
-                want = h ? h : want;
-                return h.has_value();
+                return sphere_soa_closest(soa, first, count, r, rd);
             },
-            want_st);
-        std::optional<std::uint32_t> want_any;
-        TraversalStats want_any_st;
-        bvh.template occluded_leaves<IsRobust>(
-            ray,
             [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
-                want_any = sphere_soa_any(soa, first, count, r, rd);
-                return want_any.has_value();
-            },
-            want_any_st);
+                return sphere_soa_any(soa, first, count, r, rd);
+            });
         const std::optional<SlotHit>& got = closest.found[k];
         const std::optional<std::uint32_t>& got_any = any.found[k];
-        const TraversalStats& st = closest.counts[k];
-        const TraversalStats& any_st = any.counts[k];
         const float got_tmax = got ? got->hit.t : ray.tmax;
-        REQUIRE(got.has_value() == want.has_value());
-        REQUIRE(same_bits(got_tmax, want_ray.tmax));
-        if (want) {
-            REQUIRE(got->slot == want->slot);
-            REQUIRE(same_bits(got->hit.t, want->hit.t));
-        }
-        REQUIRE(got_any == want_any);
-        REQUIRE(st.nodes == want_st.nodes);
-        REQUIRE(st.prims == want_st.prims);
-        REQUIRE(any_st.nodes == want_any_st.nodes);
-        REQUIRE(any_st.prims == want_any_st.prims);
         // Brute force: the nearest t of any sphere (ties may name another sphere and, at t = 0,
         // differ in the zero's sign: the last of equal roots is kept).
         Rayf brute_ray = ray;
@@ -278,25 +251,12 @@ TEST_CASE("sphere leaf kernels inlined into wide BVH traversal give the leaf-cal
         boxes.push_back(M::bounds(p));
     }
     const std::vector<Rayf> rays = test_rays(prims, seed);
-    for (const char* spec :
-         {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1", "bvh16,bounds=dop14"}) {
-        const AnyAccel accel = build_accel(spec, BuildInput{boxes, {}});
-        visit_accel(accel, [&](const auto& bvh) {
-            if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {
-                for (const SimdLevel l : simd_levels) {
-                    if (l > simd_supported()) {
-                        continue;
-                    }
-                    CAPTURE(spec, simd_name(l));
-                    const ScopedSimdCap cap(l);
-                    check_inlined<false>(bvh, prims, rays);
-                    check_inlined<true>(bvh, prims, rays);
-                }
-            } else {
-                FAIL(spec << " is not a wide BVH");
-            }
+    test::for_each_wide_bvh_and_simd_level(
+        {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1", "bvh16,bounds=dop14"},
+        BuildInput{boxes, {}}, [&](const auto& bvh) {
+            check_inlined<false>(bvh, prims, rays);
+            check_inlined<true>(bvh, prims, rays);
         });
-    }
 }
 
 /// The closest hits and blockers of rays through a tracer of scene.

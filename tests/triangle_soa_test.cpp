@@ -52,9 +52,7 @@ std::vector<Rayf> test_rays(std::uint64_t seed) {
     return rays;
 }
 
-bool same_bits(float a, float b) {
-    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
-}
+using test::same_bits;
 
 /// Checks every (first, count) range of slots for one method against the scalar method M.
 template <class M>
@@ -160,45 +158,16 @@ void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vec
         if constexpr (is_wt) {
             wr = &rd;
         }
-        Rayf want_ray = ray;
-        std::optional<SlotHit> want;
-        TraversalStats want_st;
-        bvh.template intersect_leaves<IsRobust>(
-            want_ray,
+        test::check_same_as_leaf_callbacks<IsRobust>(
+            bvh, closest, any, k,
             [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
-                const auto h = is_wt ? soa_closest_watertight(soa, first, count, r, *wr)
-                                     : soa_closest_mt(soa, first, count, r);
-                want = h ? h : want;
-                return h.has_value();
+                return is_wt ? soa_closest_watertight(soa, first, count, r, *wr)
+                             : soa_closest_mt(soa, first, count, r);
             },
-            want_st);
-        std::optional<std::uint32_t> want_any;
-        TraversalStats want_any_st;
-        bvh.template occluded_leaves<IsRobust>(
-            ray,
             [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
-                want_any = is_wt ? soa_any_watertight(soa, first, count, r, *wr)
-                                 : soa_any_mt(soa, first, count, r);
-                return want_any.has_value();
-            },
-            want_any_st);
-        const std::optional<SlotHit>& got = closest.found[k];
-        const std::optional<std::uint32_t>& got_any = any.found[k];
-        const TraversalStats& st = closest.counts[k];
-        const TraversalStats& any_st = any.counts[k];
-        REQUIRE(got.has_value() == want.has_value());
-        if (want) {
-            REQUIRE(got->slot == want->slot);
-            REQUIRE(same_bits(got->hit.t, want_ray.tmax));
-            REQUIRE(same_bits(got->hit.u, want->hit.u));
-            REQUIRE(same_bits(got->hit.v, want->hit.v));
-        }
-        REQUIRE(got_any == want_any);
-        REQUIRE(st.rays == want_st.rays);
-        REQUIRE(st.nodes == want_st.nodes);
-        REQUIRE(st.prims == want_st.prims);
-        REQUIRE(any_st.nodes == want_any_st.nodes);
-        REQUIRE(any_st.prims == want_any_st.prims);
+                return is_wt ? soa_any_watertight(soa, first, count, r, *wr)
+                             : soa_any_mt(soa, first, count, r);
+            });
     }
 }
 
@@ -207,26 +176,13 @@ TEST_CASE("leaf kernels inlined into wide BVH traversal give the leaf-callback a
     const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, seed, 700);
     const std::vector<Rayf> rays = test::random_rays(soup, seed, 300);
-    for (const char* spec : {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1"}) {
-        const AnyAccel accel = build_accel(spec, soup.input());
-        visit_accel(accel, [&](const auto& bvh) {
-            if constexpr (is_wide_bvh<std::decay_t<decltype(bvh)>>) {
-                for (const SimdLevel l : simd_levels) {
-                    if (l > simd_supported()) {
-                        continue;
-                    }
-                    CAPTURE(spec, simd_name(l));
-                    const ScopedSimdCap cap(l);
-                    check_inlined<MollerTrumbore<float>, false>(bvh, soup, rays);
-                    check_inlined<MollerTrumbore<float>, true>(bvh, soup, rays);
-                    check_inlined<Watertight<float>, false>(bvh, soup, rays);
-                    check_inlined<Watertight<float>, true>(bvh, soup, rays);
-                }
-            } else {
-                FAIL(spec << " is not a wide BVH");
-            }
+    test::for_each_wide_bvh_and_simd_level(
+        {"bvh4", "bvh8", "bvh16", "bvh8,from=lbvh,max_leaf=1"}, soup.input(), [&](const auto& bvh) {
+            check_inlined<MollerTrumbore<float>, false>(bvh, soup, rays);
+            check_inlined<MollerTrumbore<float>, true>(bvh, soup, rays);
+            check_inlined<Watertight<float>, false>(bvh, soup, rays);
+            check_inlined<Watertight<float>, true>(bvh, soup, rays);
         });
-    }
 }
 
 TEST_CASE("the SIMD level can be capped and reports itself", "[simd]") {
