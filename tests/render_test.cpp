@@ -61,6 +61,18 @@ RenderResult render_with(const Scene& s, const std::string& accel, RenderSetting
     return render(s, tracer, r);
 }
 
+/// A 16 x 16 image of box (default material) from (0, 0, 5), looking at the origin.
+Scene box_scene(const Bounds3f& box) {
+    Scene s;
+    s.camera.from = {0, 0, 5};
+    s.camera.at = {0, 0, 0};
+    s.camera.width = 16;
+    s.camera.height = 16;
+    s.materials.push_back(Material{});
+    s.add(BoxObject{box, 0});
+    return s;
+}
+
 const FeatureReason& reason(const RenderPlan& p, const std::string& name) {
     const auto it = std::find_if(p.reasons.begin(), p.reasons.end(),
                                  [&](const FeatureReason& f) { return f.name == name; });
@@ -234,13 +246,7 @@ TEST_CASE("light through an absorbing slab falls off as exp(-alpha s)", "[render
 }
 
 TEST_CASE("AOVs: depth is the hit distance, the heat map has its legend", "[render]") {
-    Scene s;
-    s.camera.from = {0, 0, 5};
-    s.camera.at = {0, 0, 0};
-    s.camera.width = 16;
-    s.camera.height = 16;
-    s.materials.push_back(Material{});
-    s.add(BoxObject{Bounds3f{{-10, -10, -1}, {10, 10, 1}}, 0});
+    const Scene s = box_scene({{-10, -10, -1}, {10, 10, 1}});
     RenderSettings r;
     r.aov = Aov::depth;
     const RenderResult depth = render_with(s, "bvh:binned", r);
@@ -261,13 +267,7 @@ TEST_CASE("AOVs: depth is the hit distance, the heat map has its legend", "[rend
 
 TEST_CASE("depth AOV: a pixel without a hit is depth_no_hit, not depth 0", "[render]") {
     // A small box in the middle: the corners of the image see nothing.
-    Scene s;
-    s.camera.from = {0, 0, 5};
-    s.camera.at = {0, 0, 0};
-    s.camera.width = 16;
-    s.camera.height = 16;
-    s.materials.push_back(Material{});
-    s.add(BoxObject{Bounds3f{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, 1}}, 0});
+    const Scene s = box_scene({{-0.5f, -0.5f, -1}, {0.5f, 0.5f, 1}});
     RenderSettings r;
     r.aov = Aov::depth;
     r.spp = 4;
