@@ -1,7 +1,6 @@
 #pragma once
 // The cross-check's ray sets and exact answers (crosscheck/ray_sets.h), computed once per process
-// and primitive kind on first use, shared by the intersector and root-finder suites; plus the
-// conversion of the float shapes to the precision a method runs in (float -> double is exact).
+// and primitive kind on first use, shared by the intersector and root-finder suites.
 
 #include "bench/benchmarks.h"
 #include "crosscheck/ray_sets.h"
@@ -27,45 +26,7 @@ const xcheck::BenchCases<Shape>& cached_cases() {
     return cases;
 }
 
-/// The float shape in precision T.
-template <class T>
-Triangle<T> to_scalar(const Triangle<float>& t) {
-    return {Vec3<T>(t.p0), Vec3<T>(t.p1), Vec3<T>(t.p2)};
-}
-template <class T>
-Polygon<T> to_scalar(const Polygon<float>& p) {
-    Polygon<T> out;
-    for (const Vec3f& v : p.vertices) {
-        out.vertices.emplace_back(v);
-    }
-    return out;
-}
-template <class T>
-Bounds3<T> to_scalar(const Bounds3f& b) {
-    return {Vec3<T>(b.lo), Vec3<T>(b.hi)};
-}
-template <class T>
-Obb<T> to_scalar(const Obb<float>& b) {
-    return {Vec3<T>(b.center),
-            {Vec3<T>(b.axis[0]), Vec3<T>(b.axis[1]), Vec3<T>(b.axis[2])},
-            Vec3<T>(b.half)};
-}
-template <class T>
-Sphere<T> to_scalar(const Sphere<float>& s) {
-    return {Vec3<T>(s.center), static_cast<T>(s.radius)};
-}
-template <class T>
-Torus<T> to_scalar(const Torus<float>& s) {
-    return {Vec3<T>(s.center), static_cast<T>(s.major), static_cast<T>(s.minor)};
-}
-template <class T>
-TangleCube<T> to_scalar(const TangleCube<float>& s) {
-    return {Vec3<T>(s.center), static_cast<T>(s.scale)};
-}
-template <class T>
-Cone<T> to_scalar(const Cone<float>& c) {
-    return {Vec3<T>(c.base), static_cast<T>(c.base_radius), Vec3<T>(c.apex),
-            static_cast<T>(c.apex_radius), c.caps};
-}
+/// The float shape in precision T (crosscheck/ray_sets.h).
+using xcheck::to_scalar;
 
 }  // namespace rtlab::bench

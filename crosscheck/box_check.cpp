@@ -215,18 +215,6 @@ Truth obb_truth(const Obb<float>& b, const Rayf& r) {
     return {true, CGAL::to_double(lo)};
 }
 
-/// The shape in precision T (float -> double is exact).
-template <class T>
-Bounds3<T> to_scalar(const Bounds3f& b) {
-    return {Vec3<T>(b.lo), Vec3<T>(b.hi)};
-}
-template <class T>
-Obb<T> to_scalar(const Obb<float>& b) {
-    return {Vec3<T>(b.center),
-            {Vec3<T>(b.axis[0]), Vec3<T>(b.axis[1]), Vec3<T>(b.axis[2])},
-            Vec3<T>(b.half)};
-}
-
 /// Random AABBs in [-1, 2]^3 with sides in [0.05, 1]; one in eight is flat on one axis.
 std::vector<Bounds3f> make_aabbs(Rng& rng, std::size_t n) {
     std::vector<Bounds3f> boxes;

@@ -230,8 +230,7 @@ constexpr auto for_each_cone = [](auto tag, const auto& f) {
 
 /// The case's cone in precision T, for the driver.
 constexpr auto convert = []<class T>(const ConeCase& k, std::type_identity<T>) {
-    return Cone<T>{Vec3<T>(k.cone.base), static_cast<T>(k.cone.base_radius), Vec3<T>(k.cone.apex),
-                   static_cast<T>(k.cone.apex_radius), k.cone.caps};
+    return to_scalar<T>(k.cone);
 };
 
 }  // namespace

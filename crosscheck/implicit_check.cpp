@@ -162,16 +162,6 @@ std::vector<ImplicitSet<S>> make_sets(std::size_t n, std::uint64_t seed) {
     return sets;
 }
 
-/// The surface in scalar T.
-template <class T>
-Torus<T> convert_surface(const Torus<float>& s) {
-    return {Vec3<T>(s.center), static_cast<T>(s.major), static_cast<T>(s.minor)};
-}
-template <class T>
-TangleCube<T> convert_surface(const TangleCube<float>& s) {
-    return {Vec3<T>(s.center), static_cast<T>(s.scale)};
-}
-
 /// Visits the methods of surface kind S in precision T (see run_wanted).
 template <template <class> class S>
 constexpr auto for_each_method =
@@ -192,7 +182,7 @@ void run_surface(const Options& opt,
     }
     const std::vector<ImplicitSet<S>> sets = make_sets<S>(opt.rays, opt.seed);
     const auto convert = []<class T>(const ImplicitCase<S>& c, std::type_identity<T>) {
-        return convert_surface<T>(c.surface);
+        return to_scalar<T>(c.surface);
     };
     run_wanted(
         wanted, opt, for_each_method<S>,

@@ -230,16 +230,6 @@ struct ExactPolygon {
     }
 };
 
-/// The shape in precision T (float -> double is exact).
-template <class T>
-Polygon<T> to_scalar(const Polygon<float>& p) {
-    Polygon<T> out;
-    for (const Vec3f& v : p.vertices) {
-        out.vertices.emplace_back(v);
-    }
-    return out;
-}
-
 /// Visits the polygon methods of precision T (see run_wanted).
 constexpr auto for_each_polygon = [](auto tag, const auto& f) {
     for_each_polygon_method<typename decltype(tag)::type>(f);

@@ -43,6 +43,47 @@ struct BenchCases {
     bool closest_of_all = false;  ///< true: each ray is tested against all shapes
 };
 
+/// The float shape in precision T (float -> double is exact), for the methods of either precision.
+template <class T>
+Triangle<T> to_scalar(const Triangle<float>& t) {
+    return {Vec3<T>(t.p0), Vec3<T>(t.p1), Vec3<T>(t.p2)};
+}
+template <class T>
+Polygon<T> to_scalar(const Polygon<float>& p) {
+    Polygon<T> out;
+    for (const Vec3f& v : p.vertices) {
+        out.vertices.emplace_back(v);
+    }
+    return out;
+}
+template <class T>
+Bounds3<T> to_scalar(const Bounds3f& b) {
+    return {Vec3<T>(b.lo), Vec3<T>(b.hi)};
+}
+template <class T>
+Obb<T> to_scalar(const Obb<float>& b) {
+    return {Vec3<T>(b.center),
+            {Vec3<T>(b.axis[0]), Vec3<T>(b.axis[1]), Vec3<T>(b.axis[2])},
+            Vec3<T>(b.half)};
+}
+template <class T>
+Sphere<T> to_scalar(const Sphere<float>& s) {
+    return {Vec3<T>(s.center), static_cast<T>(s.radius)};
+}
+template <class T>
+Torus<T> to_scalar(const Torus<float>& s) {
+    return {Vec3<T>(s.center), static_cast<T>(s.major), static_cast<T>(s.minor)};
+}
+template <class T>
+TangleCube<T> to_scalar(const TangleCube<float>& s) {
+    return {Vec3<T>(s.center), static_cast<T>(s.scale)};
+}
+template <class T>
+Cone<T> to_scalar(const Cone<float>& c) {
+    return {Vec3<T>(c.base), static_cast<T>(c.base_radius), Vec3<T>(c.apex),
+            static_cast<T>(c.apex_radius), c.caps};
+}
+
 /// Appends to out the cases of the check's sets that the bench keeps, in kept's order (set name,
 /// bench set): each case's float shape shape_of(case) with one sample of its ray in that bench
 /// set, and the set's exact answer for it. Each Set has `name`, `cases` (with `ray`) and

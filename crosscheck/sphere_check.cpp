@@ -194,7 +194,7 @@ constexpr auto for_each_sphere = [](auto tag, const auto& f) {
 
 /// The case's sphere in precision T, for the driver.
 constexpr auto convert = []<class T>(const SphereCase& c, std::type_identity<T>) {
-    return Sphere<T>{Vec3<T>(c.sphere.center), static_cast<T>(c.sphere.radius)};
+    return to_scalar<T>(c.sphere);
 };
 
 }  // namespace
