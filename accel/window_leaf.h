@@ -36,4 +36,33 @@ bool any_hit_by_walk(const Rayf& ray, F& hit_fn, S& stats, Walk&& walk) {
     });
 }
 
+/// intersect and occluded of a structure Derived whose traversal is such a leaf walk, written as
+/// Derived::walk_ids<IsRobust>(ray, stats, visit) (a friend of this base when private): it checks
+/// the ray (an invalid one reaches nothing), counts it and calls visit(id) for each primitive of
+/// each leaf or cell it reaches front to back, stopping when visit returns true.
+template <class Derived>
+struct LeafWalkQueries {
+    /// Closest hit: every primitive the walk reaches is offered to hit_fn, which shrinks
+    /// ray.tmax; the walk ends once ray.tmax lies within the current leaf or cell.
+    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
+    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return derived().template walk_ids<IsRobust>(r, stats, visit);
+        });
+    }
+
+    /// Any hit: stops at the first primitive hit_fn reports as blocking.
+    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
+    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
+        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
+            return derived().template walk_ids<IsRobust>(r, stats, visit);
+        });
+    }
+
+    friend bool operator==(const LeafWalkQueries&, const LeafWalkQueries&) = default;
+
+private:
+    const Derived& derived() const { return static_cast<const Derived&>(*this); }
+};
+
 }  // namespace rtlab

@@ -51,24 +51,5 @@ inline unsigned sort_lane_keys_scalar(const float* t, unsigned mask, std::int32_
 
 }  // namespace rtlab
 
-namespace rtlab::simd_sse2 {
-#define RTLAB_LANES_LEVEL 0
-#include "base/simd_lanes.inc"
-#undef RTLAB_LANES_LEVEL
-}  // namespace rtlab::simd_sse2
-
-RTLAB_SIMD_BEGIN_AVX2
-namespace rtlab::simd_avx2 {
-#define RTLAB_LANES_LEVEL 1
-#include "base/simd_lanes.inc"
-#undef RTLAB_LANES_LEVEL
-}  // namespace rtlab::simd_avx2
-RTLAB_SIMD_END
-
-RTLAB_SIMD_BEGIN_AVX512
-namespace rtlab::simd_avx512 {
-#define RTLAB_LANES_LEVEL 2
-#include "base/simd_lanes.inc"
-#undef RTLAB_LANES_LEVEL
-}  // namespace rtlab::simd_avx512
-RTLAB_SIMD_END
+#define RTLAB_SIMD_KERNELS "base/simd_lanes.inc"
+#include "base/simd_each_level.inc"

@@ -78,6 +78,37 @@ struct MethodDefaults {
     }
 };
 
+/// What the methods of one shape family share (derive from it, CRTP, or from the family's base
+/// built on it): the scalar, shape and prepared types, and prepare and bounds as the family's
+/// functions PrepareFn(shape) and BoundsFn(prepared), so a method writes only its name and tests.
+template <class Self, class T, class ShapeT, class PreparedT, auto PrepareFn, auto BoundsFn>
+struct FamilyMethod : MethodDefaults<Self> {
+    using Scalar = T;
+    using Shape = ShapeT;
+    using Prepared = PreparedT;
+
+    /// The family's prepared form of s.
+    static Prepared prepare(const Shape& s) { return PrepareFn(s); }
+    /// The family's conservative box around p.
+    static Bounds3<T> bounds(const Prepared& p) { return BoundsFn(p); }
+};
+
+/// FamilyMethod for a family with per-ray set-up (see the file comment): RayData, made once per
+/// ray by RayData::make(ray).
+template <class Self,
+          class T,
+          class ShapeT,
+          class PreparedT,
+          auto PrepareFn,
+          auto BoundsFn,
+          class RayDataT>
+struct FamilyRayMethod : FamilyMethod<Self, T, ShapeT, PreparedT, PrepareFn, BoundsFn> {
+    using RayData = RayDataT;
+
+    /// The family's per-ray set-up of ray (once per ray, shared by every primitive).
+    static RayData precompute(const Ray<T>& ray) { return RayData::make(ray); }
+};
+
 /// The per-ray data of methods without set-up.
 struct NoRayData {};
 

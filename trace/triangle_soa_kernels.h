@@ -29,18 +29,5 @@ struct SoaChunk {
 
 }  // namespace rtlab
 
-namespace rtlab::simd_sse2 {
-#include "trace/triangle_soa_kernels.inc"
-}  // namespace rtlab::simd_sse2
-
-RTLAB_SIMD_BEGIN_AVX2
-namespace rtlab::simd_avx2 {
-#include "trace/triangle_soa_kernels.inc"
-}  // namespace rtlab::simd_avx2
-RTLAB_SIMD_END
-
-RTLAB_SIMD_BEGIN_AVX512
-namespace rtlab::simd_avx512 {
-#include "trace/triangle_soa_kernels.inc"
-}  // namespace rtlab::simd_avx512
-RTLAB_SIMD_END
+#define RTLAB_SIMD_KERNELS "trace/triangle_soa_kernels.inc"
+#include "base/simd_each_level.inc"

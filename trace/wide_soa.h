@@ -24,21 +24,8 @@ using SoaFound = std::conditional_t<IsAnyHit, std::optional<std::uint32_t>, std:
 
 }  // namespace rtlab
 
-namespace rtlab::simd_sse2 {
-#include "trace/wide_soa.inc"
-}  // namespace rtlab::simd_sse2
-
-RTLAB_SIMD_BEGIN_AVX2
-namespace rtlab::simd_avx2 {
-#include "trace/wide_soa.inc"
-}  // namespace rtlab::simd_avx2
-RTLAB_SIMD_END
-
-RTLAB_SIMD_BEGIN_AVX512
-namespace rtlab::simd_avx512 {
-#include "trace/wide_soa.inc"
-}  // namespace rtlab::simd_avx512
-RTLAB_SIMD_END
+#define RTLAB_SIMD_KERNELS "trace/wide_soa.inc"
+#include "base/simd_each_level.inc"
 
 namespace rtlab {
 

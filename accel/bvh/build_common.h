@@ -104,6 +104,47 @@ private:
     std::size_t visited_ = 0;
 };
 
+/// Gives a layout converted from source tree b (PairBvh, WideBvh) b's leaf slots (moved: the
+/// conversion reads only b's nodes), input counts and configuration.
+template <class Layout>
+void take_leaf_slots(Layout& out, Bvh& b) {
+    out.prim_ids = std::move(b.prim_ids);
+    out.prim_count = b.prim_count;
+    out.unreferenced_count = b.unreferenced_count;
+    out.config = b.config;
+}
+
+/// What Bvh's and WideBvh's validate() decide before walking nodes: check_prim_ids' violation, or
+/// without nodes the verdict (valid when there are no primitives either); nullopt when the nodes
+/// are to be walked.
+std::optional<std::string> check_before_nodes(std::span<const std::uint32_t> prim_ids,
+                                              std::uint32_t prim_count,
+                                              std::uint32_t unreferenced_count,
+                                              std::size_t nodes);
+
+/// The validate() walks: for every Item (with members node and depth) reached depth first from
+/// `root`, marks it in a NodeWalk of `nodes` nodes, then calls check(item, where, push), where
+/// `where` ("node i: ") prefixes its violations and push(item) schedules a child (the last one
+/// pushed is checked next). The first violation, else the nodes never reached (NodeWalk).
+template <class Item, class F>
+std::string check_from_root(std::size_t nodes, const Item& root, const F& check) {
+    NodeWalk walk(nodes);
+    std::vector<Item> stack{root};
+    const auto push = [&](const Item& child) { stack.push_back(child); };
+    while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        const std::string where = "node " + std::to_string(it.node) + ": ";
+        if (std::string e = walk.visit(it.node, it.depth); !e.empty()) {
+            return where + e;
+        }
+        if (std::string e = check(it, where, push); !e.empty()) {
+            return e;
+        }
+    }
+    return walk.unreached();
+}
+
 /// Ranges at least this long are reduced (bounds, bins) in parallel blocks of `reduce_block`:
 /// the top nodes of an unbalanced tree (a floor split off a mesh) would otherwise run one thread
 /// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.

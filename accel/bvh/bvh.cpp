@@ -195,6 +195,19 @@ std::string bvh_detail::NodeWalk::visit(std::uint32_t node, std::uint32_t depth)
     return {};
 }
 
+std::optional<std::string> bvh_detail::check_before_nodes(std::span<const std::uint32_t> prim_ids,
+                                                          std::uint32_t prim_count,
+                                                          std::uint32_t unreferenced_count,
+                                                          std::size_t nodes) {
+    if (std::string e = check_prim_ids(prim_ids, prim_count, unreferenced_count); !e.empty()) {
+        return e;
+    }
+    if (nodes == 0) {
+        return prim_ids.empty() ? std::string{} : "primitives but no nodes";
+    }
+    return std::nullopt;
+}
+
 std::string bvh_detail::NodeWalk::unreached() const {
     if (visited_ == seen_.size()) {
         return {};
@@ -203,26 +216,15 @@ std::string bvh_detail::NodeWalk::unreached() const {
 }
 
 std::string Bvh::validate() const {
-    if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
-        !e.empty()) {
-        return e;
-    }
-    if (nodes.empty()) {
-        return prim_ids.empty() ? std::string{} : "primitives but no nodes";
+    if (auto v = bvh_detail::check_before_nodes(prim_ids, prim_count, unreferenced_count,
+                                                nodes.size())) {
+        return *v;
     }
     std::vector<char> slot_used(prim_ids.size(), 0);
-    bvh_detail::NodeWalk walk(nodes.size());
     struct Item {
         std::uint32_t node, depth;
     };
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const std::string where = "node " + std::to_string(it.node) + ": ";
-        if (std::string e = walk.visit(it.node, it.depth); !e.empty()) {
-            return where + e;
-        }
+    const auto check = [&](const Item& it, const std::string& where, auto& push) -> std::string {
         const BvhNode& n = nodes[it.node];
         const Bounds3f box = n.bounds();
         if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) {
@@ -237,7 +239,7 @@ std::string Bvh::validate() const {
                 !e.empty()) {
                 return where + e;
             }
-            continue;
+            return {};
         }
         if (n.axis() > 2) {
             return where + "split axis > 2";
@@ -249,10 +251,11 @@ std::string Bvh::validate() const {
             if (!box.contains(nodes[c].bounds())) {
                 return where + "child " + std::to_string(c) + " outside its parent";
             }
-            stack.push_back({c, it.depth + 1});
+            push({c, it.depth + 1});
         }
-    }
-    if (std::string e = walk.unreached(); !e.empty()) {
+        return {};
+    };
+    if (std::string e = bvh_detail::check_from_root(nodes.size(), Item{0, 0}, check); !e.empty()) {
         return e;
     }
     return bvh_detail::check_slots_covered(prim_ids, slot_used);

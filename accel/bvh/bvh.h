@@ -20,6 +20,21 @@ namespace rtlab {
 /// A binary BVH's nodes: in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's.
 using BvhNodes = LargeVector<BvhNode>;
 
+namespace bvh_detail {
+
+/// The start of the binary traversals (Bvh, PairBvh): counts ray when it is valid (is_valid) and
+/// returns true; an invalid ray is not counted and reaches no node.
+template <class S>
+[[gnu::always_inline]] inline bool count_if_valid(const Rayf& ray, S& stats) {
+    if (!is_valid(ray)) {
+        return false;
+    }
+    stats.count_ray();
+    return true;
+}
+
+}  // namespace bvh_detail
+
 /// A binary BVH: the root at 0, then child pairs in the order a depth-first build splits their
 /// parents (a left subtree's pairs precede its right sibling's), and the leaves' primitive ids.
 struct Bvh {
@@ -76,11 +91,7 @@ private:
     /// first hit ends it). Nodes are clipped against the current window, near child first.
     template <bool IsAnyHit, bool IsRobust, class R, class F, class S>
     bool traverse(R& ray, F& hit_fn, S& stats) const {
-        if (!is_valid(ray)) {
-            return false;
-        }
-        stats.count_ray();
-        if (nodes.empty()) {
+        if (!bvh_detail::count_if_valid(ray, stats) || nodes.empty()) {
             return false;
         }
         const SlabRay<float> sr(ray);

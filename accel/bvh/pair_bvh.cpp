@@ -57,10 +57,7 @@ void expand(const Bvh& b,
 
 PairBvh PairBvh::convert(Bvh b, ChildOrder order) {
     PairBvh p;
-    p.prim_ids = std::move(b.prim_ids);  // the nodes below never read them
-    p.prim_count = b.prim_count;
-    p.unreferenced_count = b.unreferenced_count;
-    p.config = b.config;
+    bvh_detail::take_leaf_slots(p, b);
     if (b.nodes.empty()) {
         return p;
     }
@@ -142,20 +139,14 @@ std::string PairBvh::validate() const {
             return "root: " + e;
         }
     } else {
-        bvh_detail::NodeWalk walk(nodes.size());
+        // A pair node holds the children one level below it: its depth is theirs (1 for the
+        // root's).
         struct Item {
             std::uint32_t node, depth;
             Bounds3f box;
         };
-        std::vector<Item> stack{{0, 0, root_box}};
-        while (!stack.empty()) {
-            const Item it = stack.back();
-            stack.pop_back();
-            const std::string where = "node " + std::to_string(it.node) + ": ";
-            // A pair node holds the children one level below it: depth + 1 is theirs.
-            if (std::string e = walk.visit(it.node, it.depth + 1); !e.empty()) {
-                return where + e;
-            }
+        const auto check = [&](const Item& it, const std::string& where,
+                               auto& push) -> std::string {
             const PairNode& n = nodes[it.node];
             for (int c = 0; c < 2; ++c) {
                 const Bounds3f box = n.child_bounds(c);
@@ -168,11 +159,13 @@ std::string PairBvh::validate() const {
                         return where + e;
                     }
                 } else {
-                    stack.push_back({n.child[c], it.depth + 1, box});
+                    push({n.child[c], it.depth + 1, box});
                 }
             }
-        }
-        if (std::string e = walk.unreached(); !e.empty()) {
+            return {};
+        };
+        if (std::string e = bvh_detail::check_from_root(nodes.size(), Item{0, 1, root_box}, check);
+            !e.empty()) {
             return e;
         }
     }

@@ -131,14 +131,14 @@ private:
     // hit_fn takes one primitive id (ByRange false) or a whole leaf as (first slot, count). One
     // function on purpose, as wide_traverse_as: a leaf step shared with the other traversals
     // measured 3-8% slower on the tessellated SF 4's shadow rays (`rtlab trace --threads 1
-    // --repeat 9`, 4 alternating rounds).
+    // --repeat 9`, 4 alternating rounds). When both children are hit, any hit takes child 0 (the
+    // larger box) first, as the wide traversal; closest hit the ray's side of the split, as many
+    // nodes per ray as distance order on the tessellated SF 4 and faster (primary rays 2-7% in 6
+    // of 7 rounds of `rtlab trace --threads 1 --repeat 9`); taking the side for any hit too cost
+    // 3% against child 0.
     template <bool IsAnyHit, bool IsRobust, bool ByRange, class R, class F, class S>
     bool traverse(R& ray, F& hit_fn, S& stats) const {
-        if (!is_valid(ray)) {
-            return false;
-        }
-        stats.count_ray();
-        if (prim_ids.empty()) {
+        if (!bvh_detail::count_if_valid(ray, stats) || prim_ids.empty()) {
             return false;
         }
         const SlabRay<float> sr(ray);
@@ -170,11 +170,7 @@ private:
                 float tn[2];
                 const int mask = test<IsRobust>(n, sr, ray.tmin, ray.tmax, tn);
                 if (mask == 3) {
-                    // Any hit: child 0 (the larger box) first, as the wide traversal. Closest
-                    // hit: the ray's side of the split, as many nodes per ray as distance order
-                    // on the tessellated SF 4 and faster (primary rays 2-7% in 6 of 7 rounds of
-                    // `rtlab trace --threads 1 --repeat 9`); taking the side for any hit too cost
-                    // 3% against child 0.
+                    // Both hit: the near child as said above the function.
                     const int near =
                         IsAnyHit ? 0 : static_cast<int>(((neg >> n.axis()) ^ n.flipped()) & 1u);
                     assert(size < 64 && "depth > 64: the builders guarantee depth <= 64");

@@ -50,28 +50,16 @@ AccelInfo WideBvh<N>::info() const {
 
 template <unsigned N>
 std::string WideBvh<N>::validate() const {
-    if (std::string e = bvh_detail::check_prim_ids(prim_ids, prim_count, unreferenced_count);
-        !e.empty()) {
-        return e;
-    }
-    if (nodes.empty()) {
-        return prim_ids.empty() ? std::string{} : "primitives but no nodes";
+    if (auto v = bvh_detail::check_before_nodes(prim_ids, prim_count, unreferenced_count,
+                                                nodes.size())) {
+        return *v;
     }
     std::vector<char> slot_used(prim_ids.size(), 0);
-    bvh_detail::NodeWalk walk(nodes.size());
     struct Item {
         std::uint32_t node, depth;
         Bounds3f box;  // the parent slot's box (everything for the root)
     };
-    const float inf = std::numeric_limits<float>::infinity();
-    std::vector<Item> stack{{0, 0, {{-inf, -inf, -inf}, {inf, inf, inf}}}};
-    while (!stack.empty()) {
-        const Item it = stack.back();
-        stack.pop_back();
-        const std::string where = "node " + std::to_string(it.node) + ": ";
-        if (std::string e = walk.visit(it.node, it.depth); !e.empty()) {
-            return where + e;
-        }
+    const auto check = [&](const Item& it, const std::string& where, auto& push) -> std::string {
         const WideNode<N>& n = nodes[it.node];
         unsigned used = 0;
         for (unsigned i = 0; i < N; ++i) {
@@ -106,14 +94,17 @@ std::string WideBvh<N>::validate() const {
                 if (n.child[i] <= it.node || n.child[i] >= nodes.size()) {
                     return slot + "child not after the parent or out of range";
                 }
-                stack.push_back({n.child[i], it.depth + 1, box});
+                push({n.child[i], it.depth + 1, box});
             }
         }
         if (used < (it.node == 0 ? 1u : 2u)) {
             return where + std::to_string(used) + " children";
         }
-    }
-    if (std::string e = walk.unreached(); !e.empty()) {
+        return {};
+    };
+    const float inf = std::numeric_limits<float>::infinity();
+    const Item root{0, 0, {{-inf, -inf, -inf}, {inf, inf, inf}}};
+    if (std::string e = bvh_detail::check_from_root(nodes.size(), root, check); !e.empty()) {
         return e;
     }
     if (std::string e = validate_quantized(); !e.empty()) {

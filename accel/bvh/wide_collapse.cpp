@@ -240,10 +240,7 @@ void expand(const Bvh& bvh,
 template <unsigned N>
 WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order, WideCollapse rule) {
     WideBvh<N> w;
-    w.prim_ids = std::move(bvh.prim_ids);  // the nodes below never read them
-    w.prim_count = bvh.prim_count;
-    w.unreferenced_count = bvh.unreferenced_count;
-    w.config = bvh.config;
+    bvh_detail::take_leaf_slots(w, bvh);
     if (bvh.nodes.empty()) {
         return w;
     }

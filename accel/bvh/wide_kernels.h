@@ -42,18 +42,5 @@ inline constexpr unsigned wide_stack_size = 64 * (N - 1) + 1;
 
 }  // namespace rtlab
 
-namespace rtlab::simd_sse2 {
-#include "accel/bvh/wide_traverse.inc"
-}  // namespace rtlab::simd_sse2
-
-RTLAB_SIMD_BEGIN_AVX2
-namespace rtlab::simd_avx2 {
-#include "accel/bvh/wide_traverse.inc"
-}  // namespace rtlab::simd_avx2
-RTLAB_SIMD_END
-
-RTLAB_SIMD_BEGIN_AVX512
-namespace rtlab::simd_avx512 {
-#include "accel/bvh/wide_traverse.inc"
-}  // namespace rtlab::simd_avx512
-RTLAB_SIMD_END
+#define RTLAB_SIMD_KERNELS "accel/bvh/wide_traverse.inc"
+#include "base/simd_each_level.inc"

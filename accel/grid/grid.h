@@ -27,31 +27,13 @@ struct GridConfig {
 
 /// A uniform grid over the union of the primitive boxes (its GridFrame); cell i holds
 /// cell_prims[cell_start[i], cell_start[i + 1]).
-struct Grid : GridFrame {
+struct Grid : GridFrame, LeafWalkQueries<Grid> {
     using Config = GridConfig;
 
     // Cells in huge pages once 2 MiB or more (base/large_pages.h), as bvh:pair's nodes.
     LargeVector<std::uint32_t> cell_start;  ///< CSR offsets, size cells + 1
     LargeVector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
     std::vector<bool> prim_present;         ///< per primitive id: its box passes is_usable_box
-
-    /// Closest hit: cells are walked front to back and their primitives offered to hit_fn (once
-    /// per ray, unless evicted from the 8-entry mailbox); the walk ends once ray.tmax (shrunk by
-    /// hit_fn) lies within the current cell. Invalid rays are rejected before any cell.
-    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
-    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk<IsRobust>(r, stats, visit);
-        });
-    }
-
-    /// Any hit: stops at the first primitive hit_fn reports as blocking.
-    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
-    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk<IsRobust>(r, stats, visit);
-        });
-    }
 
     /// The grid's box.
     Bounds3f bounds() const { return box; }
@@ -67,10 +49,13 @@ struct Grid : GridFrame {
     friend bool operator==(const Grid&, const Grid&) = default;
 
 private:
-    /// The 3D-DDA (dda_walk). visit(id) is called for every primitive of each cell pierced
-    /// (front to back) and returns true to stop.
+    friend LeafWalkQueries<Grid>;
+
+    /// The 3D-DDA (dda_walk) for intersect and occluded (LeafWalkQueries). visit(id) is called
+    /// for every primitive of each cell pierced (front to back; once per ray, unless evicted from
+    /// the 8-entry mailbox) and returns true to stop.
     template <bool IsRobust, class S, class Visit>
-    bool walk(Rayf& ray, S& stats, Visit&& visit) const {
+    bool walk_ids(Rayf& ray, S& stats, Visit& visit) const {
         if (!is_valid(ray) || cell_start.empty()) {
             return false;
         }

@@ -41,7 +41,7 @@ struct SubGrid {
 /// The two-level grid: the top frame over the union of the primitive boxes; top_sub[i] is the
 /// sub-grid of top cell i (no_sub when empty); cell j of sub-grid s holds
 /// cell_prims[cell_start[first_cell + j], cell_start[first_cell + j + 1]).
-struct TwoLevelGrid {
+struct TwoLevelGrid : LeafWalkQueries<TwoLevelGrid> {
     using Config = TwoLevelGridConfig;
     static constexpr std::uint32_t no_sub = std::numeric_limits<std::uint32_t>::max();
 
@@ -52,24 +52,6 @@ struct TwoLevelGrid {
     LargeVector<std::uint32_t> cell_start;  ///< CSR offsets over all sub-grid cells (+ 1)
     LargeVector<std::uint32_t> cell_prims;  ///< primitive ids, cell by cell, ascending per cell
     std::vector<bool> prim_present;         ///< per primitive id: its box passes is_usable_box
-
-    /// Closest hit: top cells front to back, in each its sub-grid's cells front to back; each
-    /// primitive offered to hit_fn once per ray (8-entry mailbox); the walk ends once ray.tmax
-    /// lies within the current cell of either level.
-    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
-    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk<IsRobust>(r, stats, visit);
-        });
-    }
-
-    /// Any hit: stops at the first primitive hit_fn reports as blocking.
-    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
-    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk<IsRobust>(r, stats, visit);
-        });
-    }
 
     /// The top grid's box.
     Bounds3f bounds() const { return top.box; }
@@ -86,8 +68,14 @@ struct TwoLevelGrid {
     friend bool operator==(const TwoLevelGrid&, const TwoLevelGrid&) = default;
 
 private:
+    friend LeafWalkQueries<TwoLevelGrid>;
+
+    /// The walk of intersect and occluded (LeafWalkQueries): top cells front to back, in each its
+    /// sub-grid's cells front to back, calling visit(id) for each primitive (once per ray, unless
+    /// evicted from the 8-entry mailbox); true from visit stops it. It ends once ray.tmax lies
+    /// within the current cell of either level.
     template <bool IsRobust, class S, class Visit>
-    bool walk(Rayf& ray, S& stats, Visit&& visit) const {
+    bool walk_ids(Rayf& ray, S& stats, Visit& visit) const {
         if (!is_valid(ray) || top_sub.empty()) {
             return false;
         }

@@ -61,6 +61,31 @@ struct CostModel {
     }
 };
 
+/// What both builders keep of their input and Config: the input, the cost model, the leaf size
+/// and depth limits, whether straddling primitives are clipped (perfect splits, given a clip) and
+/// whether children are built as parallel tasks.
+class BuilderSettings {
+public:
+    BuilderSettings(const BuildInput& in,
+                    const KdTree::Config& cfg,
+                    std::uint32_t max_depth,
+                    bool parallel)
+        : in_(in)
+        , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
+        , min_leaf_(cfg.min_leaf_size)
+        , max_depth_(max_depth)
+        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
+        , parallel_(parallel) {}
+
+protected:
+    const BuildInput& in_;
+    CostModel cost_;
+    std::size_t min_leaf_;
+    std::uint32_t max_depth_;
+    bool perfect_;
+    bool parallel_;
+};
+
 /// A kd-tree with the bookkeeping fields set from the input, and no nodes yet; primitives whose
 /// box fails is_usable_box are marked absent.
 inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {

@@ -26,18 +26,9 @@ struct Ref {
     Bounds3f box;
 };
 
-class MedianBuilder {
+class MedianBuilder : kd_detail::BuilderSettings {
 public:
-    MedianBuilder(const BuildInput& in,
-                  const KdTree::Config& cfg,
-                  std::uint32_t max_depth,
-                  bool parallel)
-        : in_(in)
-        , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
-        , min_leaf_(cfg.min_leaf_size)
-        , max_depth_(max_depth)
-        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
-        , parallel_(parallel) {}
+    using BuilderSettings::BuilderSettings;
 
     /// Builds the subtree of the node `box` holding `refs` into `out` (nodes and lists only).
     void recurse(std::vector<Ref> refs, const Bounds3f& box, std::uint32_t depth, KdTree& out) {
@@ -131,13 +122,6 @@ private:
         }
         return intersection(in_.bounds[id], box);
     }
-
-    const BuildInput& in_;
-    kd_detail::CostModel cost_;
-    std::size_t min_leaf_;
-    std::uint32_t max_depth_;
-    bool perfect_;
-    bool parallel_;
 };
 
 }  // namespace

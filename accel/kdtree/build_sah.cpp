@@ -83,18 +83,15 @@ struct Chunk {
 /// Nodes at least this large build their children as parallel tasks.
 constexpr std::size_t parallel_min = 4096;
 
-class SahBuilder {
+class SahBuilder : kd_detail::BuilderSettings {
 public:
     SahBuilder(const BuildInput& in, const KdTree::Config& cfg, std::uint32_t max_depth)
-        : in_(in)
-        , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
-        , min_leaf_(cfg.min_leaf_size)
-        , max_depth_(max_depth)
-        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
-        , parallel_(
-              tbb::this_task_arena::max_concurrency() > 1 &&
-              tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1) {
-    }
+        : BuilderSettings(in,
+                          cfg,
+                          max_depth,
+                          tbb::this_task_arena::max_concurrency() > 1 &&
+                              tbb::global_control::active_value(
+                                  tbb::global_control::max_allowed_parallelism) > 1) {}
 
     /// Builds the subtree of the node `box` whose primitives' events are `ev` into `out`;
     /// `side` has one scratch byte per primitive id, owned by the calling task.
@@ -307,13 +304,6 @@ private:
         }
         return static_cast<std::uint32_t>(out.nodes.size());
     }
-
-    const BuildInput& in_;
-    kd_detail::CostModel cost_;
-    std::size_t min_leaf_;
-    std::uint32_t max_depth_;
-    bool perfect_;
-    bool parallel_;
 };
 
 /// Appends the subtree rooted at c.nodes[local] to the tree in pre-order.

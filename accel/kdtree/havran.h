@@ -78,6 +78,11 @@ inline void havran_set_point(
 /// (4) the stop test compares a lowered entry with tmax, so a cell whose exact entry precedes the
 /// closest hit found is still visited. Rays with a zero or subnormal direction component never
 /// get here (they take the t-value walk), so inv_dir is finite and t never NaN.
+///
+/// A pushed point keeps the computed t: its coordinates, the pads and later clamps need a t within
+/// gamma(3) of the exact crossing. Lowering it at the push (for the stop test) made nested splits
+/// through one vertex clamp to ever lower t, until a point's coordinates fell a few ulps short of
+/// the plane the exact ray reaches there and a child was skipped.
 template <bool IsRobust, std::uint32_t DepthLimit, class S, class Leaf>
 bool havran_walk(const KdNode* nodes,
                  const Rayf& ray,
@@ -130,12 +135,7 @@ bool havran_walk(const KdNode* nodes,
             if (++ex == en) {
                 ++ex;
             }
-            // The point keeps the computed t: its coordinates, the pads and later clamps need a t
-            // within gamma(3) of the exact crossing. Lowering it here (for the stop test) made
-            // nested splits through one vertex clamp to ever lower t, until a point's coordinates
-            // fell a few ulps short of the plane the exact ray reaches there and a child was
-            // skipped.
-            havran_set_point(stack[ex], ray, t, a, split);
+            havran_set_point(stack[ex], ray, t, a, split);  // the computed t: see above
             stack[ex].node = far_child;
             stack[ex].prev = prev;
             index = near_child;

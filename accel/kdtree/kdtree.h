@@ -27,7 +27,7 @@ namespace rtlab {
 enum class KdTraversal : std::uint8_t { havran, tvalue };
 
 /// A kd-tree over primitive boxes; nodes[0] is the root, prim_ids holds the leaves' lists.
-struct KdTree {
+struct KdTree : LeafWalkQueries<KdTree> {
     /// Build parameters; the cost constants are those of the SAH cost model.
     struct Config {
         float traversal_cost = 1.0f;     ///< K_T: cost of one inner-node step
@@ -61,16 +61,6 @@ struct KdTree {
     /// keeps the per-id path (for comparisons).
     bool soa_leaves = true;
 
-    /// Closest hit: leaves are visited front to back and every primitive in them is offered to
-    /// hit_fn; traversal ends once ray.tmax (shrunk by hit_fn) lies within the current leaf.
-    /// Invalid rays (NaN, zero direction) are rejected before any node is touched.
-    template <bool IsRobust = false, ClosestHitFn F, StatsSink S = NoStats>
-    bool intersect(Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return closest_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk_ids<IsRobust>(r, stats, visit);
-        });
-    }
-
     /// Closest hit offering whole leaves: leaf_fn(first, count, ray) tests the primitives of
     /// prim_ids slots [first, first + count) in slot order, shrinks ray.tmax on a hit and returns
     /// true; same leaves, order and stop rule as intersect. For leaf data stored in slot order
@@ -87,14 +77,6 @@ struct KdTree {
         };
         walk_leaves<IsRobust>(ray, stats, leaf);
         return hit;
-    }
-
-    /// Any hit: stops at the first primitive hit_fn reports as blocking.
-    template <bool IsRobust = false, AnyHitFn F, StatsSink S = NoStats>
-    bool occluded(const Rayf& ray, F&& hit_fn, S&& stats = {}) const {
-        return any_hit_by_walk(ray, hit_fn, stats, [&](Rayf& r, auto&& visit) {
-            return walk_ids<IsRobust>(r, stats, visit);
-        });
     }
 
     /// Any hit offering whole leaves: the first leaf_fn(first, count, ray) returning true ends it.
@@ -145,7 +127,11 @@ private:
         return tvalue_walk<IsRobust>(ray, sr, t_enter, t_exit, stats, leaf);
     }
 
-    /// walk_leaves offering each leaf's primitive ids to visit(id) one by one (true stops).
+    friend LeafWalkQueries<KdTree>;
+
+    /// walk_leaves offering each leaf's primitive ids to visit(id) one by one (true stops): the
+    /// walk of intersect and occluded (LeafWalkQueries). Invalid rays (NaN, zero direction) are
+    /// rejected before any node is touched.
     template <bool IsRobust, class S, class Visit>
     bool walk_ids(Rayf& ray, S& stats, Visit& visit) const {
         auto leaf = [&](std::uint32_t first, std::uint32_t count) {

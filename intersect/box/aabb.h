@@ -15,6 +15,12 @@ namespace rtlab {
 
 namespace detail {
 
+/// The box itself: the slab methods' prepared form and bounds.
+template <class T>
+Bounds3<T> same_box(const Bounds3<T>& b) {
+    return b;
+}
+
 /// Slab test of the closed box b for the ray window, with sr = SlabRay(ray); the hit t is the
 /// entry (tmin when inside).
 template <bool IsRobust, class T>
@@ -30,56 +36,39 @@ std::optional<PrimHit<T>> aabb_intersect(const Bounds3<T>& b,
 
 }  // namespace detail
 
+/// What both slab methods share (derive from it, CRTP): the box as shape, prepared form and
+/// bounds, the reciprocal direction (SlabRay) as per-ray set-up, and intersect as
+/// detail::aabb_intersect<IsRobust>. A method adds its name.
+template <class Self, class T, bool IsRobust>
+struct AabbMethodBase : FamilyRayMethod<Self,
+                                        T,
+                                        Bounds3<T>,
+                                        Bounds3<T>,
+                                        detail::same_box<T>,
+                                        detail::same_box<T>,
+                                        SlabRay<T>> {
+    using MethodDefaults<Self>::intersect;
+
+    /// Entry t of the window [tmin, tmax] into the closed box (tmin when the origin is inside;
+    /// robust: padded down by up to 2*gamma(3) relative); u = v = 0.
+    static std::optional<PrimHit<T>> intersect(const Bounds3<T>& p,
+                                               const Ray<T>& ray,
+                                               const SlabRay<T>& r) {
+        return detail::aabb_intersect<IsRobust>(p, ray, r);
+    }
+};
+
 /// Fast slab test: exact IEEE reciprocals, no padding; may miss boxes grazed within rounding.
 template <class T>
-struct AabbSlabs : MethodDefaults<AabbSlabs<T>> {
-    using MethodDefaults<AabbSlabs<T>>::intersect;
-    using Scalar = T;
-    using Shape = Bounds3<T>;
-    using Prepared = Bounds3<T>;
-    /// The per-ray set-up: reciprocal direction and direction signs.
-    using RayData = SlabRay<T>;
+struct AabbSlabs : AabbMethodBase<AabbSlabs<T>, T, false> {
     static constexpr std::string_view name = "slabs";
-
-    /// The box itself.
-    static Prepared prepare(const Shape& s) { return s; }
-    /// The box itself.
-    static Bounds3<T> bounds(const Prepared& p) { return p; }
-    /// The reciprocal direction of ray (once per ray, shared by every box).
-    static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
-    /// Entry t of the window [tmin, tmax] into the closed box (tmin when the origin is inside);
-    /// u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
-                                               const Ray<T>& ray,
-                                               const RayData& r) {
-        return detail::aabb_intersect<false>(p, ray, r);
-    }
 };
 
 /// Robust slab test (Ize 2013): the computed interval contains the exact one, so a box the exact
 /// ray touches is never missed; boxes missed by a few ulps may be reported as hits.
 template <class T>
-struct AabbSlabsRobust : MethodDefaults<AabbSlabsRobust<T>> {
-    using MethodDefaults<AabbSlabsRobust<T>>::intersect;
-    using Scalar = T;
-    using Shape = Bounds3<T>;
-    using Prepared = Bounds3<T>;
-    /// The per-ray set-up: reciprocal direction and direction signs.
-    using RayData = SlabRay<T>;
+struct AabbSlabsRobust : AabbMethodBase<AabbSlabsRobust<T>, T, true> {
     static constexpr std::string_view name = "slabs_robust";
-
-    /// The box itself.
-    static Prepared prepare(const Shape& s) { return s; }
-    /// The box itself.
-    static Bounds3<T> bounds(const Prepared& p) { return p; }
-    /// The reciprocal direction of ray (once per ray, shared by every box).
-    static RayData precompute(const Ray<T>& ray) { return RayData(ray); }
-    /// Entry t (padded down by up to 2*gamma(3) relative; tmin when inside); u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
-                                               const Ray<T>& ray,
-                                               const RayData& r) {
-        return detail::aabb_intersect<true>(p, ray, r);
-    }
 };
 
 }  // namespace rtlab

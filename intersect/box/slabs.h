@@ -42,6 +42,8 @@ struct SlabRay {
         : org(r.org)
         , inv_dir(T(1) / r.dir.x, T(1) / r.dir.y, T(1) / r.dir.z)
         , neg{std::signbit(r.dir.x), std::signbit(r.dir.y), std::signbit(r.dir.z)} {}
+    /// SlabRay(r), as the per-ray set-up of the slab methods (FamilyRayMethod).
+    static SlabRay make(const Ray<T>& r) { return SlabRay(r); }
 };
 
 /// Clips [t0, t1] to the slabs of the box [lo, hi]; returns false when the interval empties.

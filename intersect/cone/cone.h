@@ -5,6 +5,7 @@
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 #include "intersect/ray.h"
 
 #include <algorithm>
@@ -160,6 +161,20 @@ void cap_hits(
 }
 
 }  // namespace detail
+
+/// What every world-space cone method shares (derive from it, CRTP): the family's types,
+/// prepare_cone, cone_bounds and the per-ray set-up dd = dir . dir (ConeRay). A method adds its
+/// name and the three-argument intersect (with `using ConeMethodBase<Self, T>::intersect;` for
+/// the other forms).
+template <class Self, class T>
+using ConeMethodBase =
+    FamilyRayMethod<Self,
+                    T,
+                    Cone<T>,
+                    PreparedCone<T>,
+                    detail::prepare_cone<T>,
+                    static_cast<Bounds3<T> (*)(const PreparedCone<T>&)>(detail::cone_bounds<T>),
+                    ConeRay<T>>;
 
 /// Unnormalised outward normal of the lateral surface at p (on or near it): the radial direction
 /// tilted against the axis by the slope. Caps are not considered.

@@ -7,7 +7,6 @@
 // nearly parallel to a generator. Cost: 4 dot products, 1 sqrt, 2 divisions; dd = d.d per ray.
 
 #include "intersect/cone/cone.h"
-#include "intersect/method.h"
 
 #include <cmath>
 #include <optional>
@@ -17,27 +16,15 @@ namespace rtlab {
 
 /// The quadric in closed form, in world coordinates.
 template <class T>
-struct ConeQuadric : MethodDefaults<ConeQuadric<T>> {
-    using MethodDefaults<ConeQuadric<T>>::intersect;
-    using Scalar = T;
-    using Shape = Cone<T>;
-    using Prepared = PreparedCone<T>;
-    /// The per-ray set-up: dd = dir . dir.
-    using RayData = ConeRay<T>;
+struct ConeQuadric : ConeMethodBase<ConeQuadric<T>, T> {
+    using ConeMethodBase<ConeQuadric<T>, T>::intersect;
     static constexpr std::string_view name = "quadric";
-
-    /// Unit axis, height, slope and frame.
-    static Prepared prepare(const Shape& c) { return detail::prepare_cone(c); }
-    /// Conservative box around the cone.
-    static Bounds3<T> bounds(const Prepared& p) { return detail::cone_bounds(p); }
-    /// dd = dir . dir of ray (once per ray, shared by every cone).
-    static RayData precompute(const Ray<T>& ray) { return ConeRay<T>::make(ray); }
 
     /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
     /// hit's position along the axis (0 base, 1 apex).
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+    static std::optional<PrimHit<T>> intersect(const PreparedCone<T>& p,
                                                const Ray<T>& ray,
-                                               const RayData& rd) {
+                                               const ConeRay<T>& rd) {
         const Vec3<T> w = ray.org - p.base;
         const T sd = dot(ray.dir, p.axis);  // axial speed
         const T s0 = dot(w, p.axis);        // axial position of the origin

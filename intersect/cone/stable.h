@@ -13,7 +13,6 @@
 // epsilon. Cost: about 1.4x the closed form (asan build); dd = d.d per ray.
 
 #include "intersect/cone/cone.h"
-#include "intersect/method.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,27 +23,15 @@ namespace rtlab {
 
 /// Local frame about the midpoint, moved origin, stable discriminant and roots.
 template <class T>
-struct ConeStable : MethodDefaults<ConeStable<T>> {
-    using MethodDefaults<ConeStable<T>>::intersect;
-    using Scalar = T;
-    using Shape = Cone<T>;
-    using Prepared = PreparedCone<T>;
-    /// The per-ray set-up: dd = dir . dir.
-    using RayData = ConeRay<T>;
+struct ConeStable : ConeMethodBase<ConeStable<T>, T> {
+    using ConeMethodBase<ConeStable<T>, T>::intersect;
     static constexpr std::string_view name = "stable";
-
-    /// Unit axis, height, slope and frame.
-    static Prepared prepare(const Shape& c) { return detail::prepare_cone(c); }
-    /// Conservative box around the cone.
-    static Bounds3<T> bounds(const Prepared& p) { return detail::cone_bounds(p); }
-    /// dd = dir . dir of ray (once per ray, shared by every cone).
-    static RayData precompute(const Ray<T>& ray) { return ConeRay<T>::make(ray); }
 
     /// Nearest t in [tmin, tmax] on the side or a cap; u: 0 side, 1 base cap, 2 apex cap; v: the
     /// hit's position along the axis (0 base, 1 apex).
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+    static std::optional<PrimHit<T>> intersect(const PreparedCone<T>& p,
                                                const Ray<T>& ray,
-                                               const RayData& rd) {
+                                               const ConeRay<T>& rd) {
         // A far origin moves to org + tc dir, the line's point nearest the midpoint.
         T tc = dot(p.mid - ray.org, ray.dir) / rd.dd;
         const T size = p.height * T(0.5) + std::max(p.r0, p.r1);

@@ -34,6 +34,18 @@ struct PreparedImplicit {
     Bounds3<typename S::Scalar> box;
 };
 
+/// What the implicit methods prepare of surface s: s and its box.
+template <class S>
+PreparedImplicit<S> prepare_implicit(const S& s) {
+    return {s, s.bounds()};
+}
+
+/// The box of a prepared surface.
+template <class S>
+Bounds3<typename S::Scalar> implicit_box(const PreparedImplicit<S>& p) {
+    return p.box;
+}
+
 /// The per-ray set-up of the implicit methods: the reciprocal direction for the box clip.
 template <class T>
 struct ImplicitRay {

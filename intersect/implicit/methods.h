@@ -20,24 +20,30 @@
 
 namespace rtlab {
 
-/// Members common to the three methods (shape, prepare, bounds, per-ray set-up, normal).
+/// Members common to the three methods (the family's types, prepare_implicit, implicit_box and
+/// ImplicitRay as per-ray set-up; normal, and intersect by Derived::first_root, the method's
+/// first root in [0, 1] of the ray polynomial).
 template <template <class> class Surface, class T, class Derived>
-struct ImplicitMethodBase : MethodDefaults<Derived> {
-    using Scalar = T;
-    using Shape = Surface<T>;
-    using Prepared = PreparedImplicit<Shape>;
-    /// The per-ray set-up: the reciprocal direction for the box clip.
-    using RayData = ImplicitRay<T>;
-
-    /// Stores the surface and its box.
-    static Prepared prepare(const Shape& s) { return {s, s.bounds()}; }
-    /// The surface's conservative box.
-    static Bounds3<T> bounds(const Prepared& p) { return p.box; }
-    /// The reciprocal direction of ray (once per ray, shared by every surface).
-    static RayData precompute(const Ray<T>& ray) { return ImplicitRay<T>::make(ray); }
+struct ImplicitMethodBase : FamilyRayMethod<Derived,
+                                            T,
+                                            Surface<T>,
+                                            PreparedImplicit<Surface<T>>,
+                                            prepare_implicit<Surface<T>>,
+                                            implicit_box<Surface<T>>,
+                                            ImplicitRay<T>> {
+    using MethodDefaults<Derived>::intersect;
     /// Unit normal (normalised gradient) at the hit point of ray at hit.t.
-    static Vec3<T> normal(const Prepared& p, const Ray<T>& ray, const PrimHit<T>& hit) {
+    static Vec3<T> normal(const PreparedImplicit<Surface<T>>& p,
+                          const Ray<T>& ray,
+                          const PrimHit<T>& hit) {
         return implicit_normal(p, ray.at(hit.t));
+    }
+    /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
+    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
+                                               const Ray<T>& ray,
+                                               const ImplicitRay<T>& rd) {
+        return implicit_intersect(p, ray, rd,
+                                  [](const auto& poly) { return Derived::first_root(poly); });
     }
 };
 
@@ -46,18 +52,14 @@ struct ImplicitMethodBase : MethodDefaults<Derived> {
 /// kept by the small discriminant slack of solve_quadratic/solve_cubic.
 template <template <class> class Surface, class T>
 struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Surface, T>> {
-    using MethodDefaults<ImplicitClosedForm>::intersect;
     static constexpr std::string_view name = "closed_form";
 
-    /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray,
-                                               const ImplicitRay<T>& rd) {
-        return implicit_intersect(p, ray, rd, [](const auto& poly) -> std::optional<T> {
-            const RealRoots<T, 4> r = solve_closed_form_unit(poly);
-            T u;
-            return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
-        });
+    /// The smallest real root of poly in [0, 1].
+    template <std::size_t N>
+    static std::optional<T> first_root(const Polynomial<T, N>& poly) {
+        const RealRoots<T, 4> r = solve_closed_form_unit(poly);
+        T u;
+        return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
     }
 };
 
@@ -67,16 +69,8 @@ struct ImplicitClosedForm : ImplicitMethodBase<Surface, T, ImplicitClosedForm<Su
 /// still found; a tangent (double) root is found only if p is exactly 0 at the extremum.
 template <template <class> class Surface, class T>
 struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T>> {
-    using MethodDefaults<ImplicitNewton>::intersect;
     static constexpr std::string_view name = "newton";
     static constexpr int steps = 16;
-
-    /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray,
-                                               const ImplicitRay<T>& rd) {
-        return implicit_intersect(p, ray, rd, [](const auto& poly) { return first_root(poly); });
-    }
 
     /// First root of poly in [0, 1] by marching and bracketed Newton of at most max_iter steps
     /// per refinement (the default converges; the benchmarks cap it to measure the error).
@@ -126,18 +120,14 @@ struct ImplicitNewton : ImplicitMethodBase<Surface, T, ImplicitNewton<Surface, T
 /// Laguerre: all complex roots with deflation, the smallest real one in the window.
 template <template <class> class Surface, class T>
 struct ImplicitLaguerre : ImplicitMethodBase<Surface, T, ImplicitLaguerre<Surface, T>> {
-    using MethodDefaults<ImplicitLaguerre>::intersect;
     static constexpr std::string_view name = "laguerre";
 
-    /// Nearest t in [tmin, tmax] inside the box; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const PreparedImplicit<Surface<T>>& p,
-                                               const Ray<T>& ray,
-                                               const ImplicitRay<T>& rd) {
-        return implicit_intersect(p, ray, rd, [](const auto& poly) -> std::optional<T> {
-            const auto r = laguerre_real_roots(poly);
-            T u;
-            return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
-        });
+    /// The smallest real root of poly in [0, 1].
+    template <std::size_t N>
+    static std::optional<T> first_root(const Polynomial<T, N>& poly) {
+        const auto r = laguerre_real_roots(poly);
+        T u;
+        return r.first_in(T(0), T(1), u) ? std::optional<T>(u) : std::nullopt;
     }
 };
 

@@ -3,7 +3,6 @@
 // projection (Haines 1994, "Point in Polygon Strategies", Graphics Gems IV). No epsilon:
 // half-open rule below. Cost: plane step + per edge 2 sub, 2 compares, <= 2 mul.
 
-#include "intersect/method.h"
 #include "intersect/polygon/polygon.h"
 
 #include <optional>
@@ -17,19 +16,11 @@ namespace rtlab {
 /// exactly at the point (u == 0) does not count, so a point on an edge shared by two polygons is
 /// inside exactly one of them.
 template <class T>
-struct PolygonCrossing : MethodDefaults<PolygonCrossing<T>> {
-    using Scalar = T;
-    using Shape = Polygon<T>;
-    using Prepared = PreparedPolygon<T>;
+struct PolygonCrossing : PolygonMethodBase<PolygonCrossing<T>, T> {
     static constexpr std::string_view name = "crossing_count";
 
-    /// Newell plane, dominant axis and projected vertices.
-    static Prepared prepare(const Shape& s) { return detail::prepare_polygon(s); }
-    /// Bounds of the vertices.
-    static Bounds3<T> bounds(const Prepared& p) { return p.box; }
-
     /// True when the projected point (pu, pv) is inside by the even-odd rule.
-    static bool contains(const Prepared& p, T pu, T pv) {
+    static bool contains(const PreparedPolygon<T>& p, T pu, T pv) {
         const std::size_t n = p.pts.size();
         bool inside = false;
         T au = p.pts[n - 1][0] - pu, av = p.pts[n - 1][1] - pv;
@@ -54,15 +45,6 @@ struct PolygonCrossing : MethodDefaults<PolygonCrossing<T>> {
             a_above = b_above;
         }
         return inside;
-    }
-
-    /// Nearest (the only) hit in [tmin, tmax]; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        const auto h = detail::polygon_plane_hit(p, ray);
-        if (!h || !contains(p, h->pu, h->pv)) {
-            return std::nullopt;
-        }
-        return PrimHit<T>{h->t, T(0), T(0)};
     }
 };
 

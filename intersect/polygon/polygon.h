@@ -6,6 +6,7 @@
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 #include "intersect/ray.h"
 
 #include <array>
@@ -70,6 +71,12 @@ PreparedPolygon<T> prepare_polygon(const Polygon<T>& poly) {
     return p;
 }
 
+/// The box of the polygon's vertices.
+template <class T>
+Bounds3<T> polygon_box(const PreparedPolygon<T>& p) {
+    return p.box;
+}
+
 /// Where the ray meets the polygon's plane inside [tmin, tmax]: t and the projected point.
 template <class T>
 struct PlaneHit {
@@ -102,5 +109,25 @@ T edge_side(T au, T av, T bu, T bv) {
 }
 
 }  // namespace detail
+
+/// What every polygon method shares (derive from it, CRTP): the types, prepare, bounds and
+/// intersect as the plane step (detail::polygon_plane_hit) then Self::contains(p, pu, pv), the
+/// method's point-in-polygon test of the projected hit point. A method adds its name and contains.
+template <class Self, class T>
+struct PolygonMethodBase : FamilyMethod<Self,
+                                        T,
+                                        Polygon<T>,
+                                        PreparedPolygon<T>,
+                                        detail::prepare_polygon<T>,
+                                        detail::polygon_box<T>> {
+    /// Nearest (the only) hit in [tmin, tmax]; u = v = 0.
+    static std::optional<PrimHit<T>> intersect(const PreparedPolygon<T>& p, const Ray<T>& ray) {
+        const auto h = detail::polygon_plane_hit(p, ray);
+        if (!h || !Self::contains(p, h->pu, h->pv)) {
+            return std::nullopt;
+        }
+        return PrimHit<T>{h->t, T(0), T(0)};
+    }
+};
 
 }  // namespace rtlab

@@ -4,7 +4,6 @@
 // nonzero rule. No epsilon; the same half-open rule as crossing_count. Cost: plane step + per
 // edge 2 sub, 2 compares, <= 2 mul.
 
-#include "intersect/method.h"
 #include "intersect/polygon/polygon.h"
 
 #include <optional>
@@ -17,19 +16,11 @@ namespace rtlab {
 /// v == point.v count as above, and a crossing at u == 0 does not count (as in crossing_count),
 /// so for simple polygons both methods give the same answer.
 template <class T>
-struct PolygonWinding : MethodDefaults<PolygonWinding<T>> {
-    using Scalar = T;
-    using Shape = Polygon<T>;
-    using Prepared = PreparedPolygon<T>;
+struct PolygonWinding : PolygonMethodBase<PolygonWinding<T>, T> {
     static constexpr std::string_view name = "winding_number";
 
-    /// Newell plane, dominant axis and projected vertices.
-    static Prepared prepare(const Shape& s) { return detail::prepare_polygon(s); }
-    /// Bounds of the vertices.
-    static Bounds3<T> bounds(const Prepared& p) { return p.box; }
-
     /// Winding number of the projected boundary around (pu, pv).
-    static int winding(const Prepared& p, T pu, T pv) {
+    static int winding(const PreparedPolygon<T>& p, T pu, T pv) {
         const std::size_t n = p.pts.size();
         int wn = 0;
         T au = p.pts[n - 1][0] - pu, av = p.pts[n - 1][1] - pv;
@@ -49,13 +40,9 @@ struct PolygonWinding : MethodDefaults<PolygonWinding<T>> {
         return wn;
     }
 
-    /// Nearest (the only) hit in [tmin, tmax]; u = v = 0.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
-        const auto h = detail::polygon_plane_hit(p, ray);
-        if (!h || winding(p, h->pu, h->pv) == 0) {
-            return std::nullopt;
-        }
-        return PrimHit<T>{h->t, T(0), T(0)};
+    /// True when the projected point (pu, pv) is inside by the nonzero rule.
+    static bool contains(const PreparedPolygon<T>& p, T pu, T pv) {
+        return winding(p, pu, pv) != 0;
     }
 };
 

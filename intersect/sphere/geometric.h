@@ -5,7 +5,6 @@
 // root in [tmin, tmax]. Cost: 2 dot products, early reject before the square root; a = d.d
 // once per ray (precompute).
 
-#include "intersect/method.h"
 #include "intersect/sphere/sphere.h"
 
 #include <cmath>
@@ -17,26 +16,14 @@ namespace rtlab {
 
 /// Geometric method: vector to the centre, its projection on the ray, early rejects.
 template <class T>
-struct SphereGeometric : MethodDefaults<SphereGeometric<T>> {
-    using MethodDefaults<SphereGeometric<T>>::intersect;
-    using Scalar = T;
-    using Shape = Sphere<T>;
-    using Prepared = PreparedSphere<T>;
-    /// The per-ray set-up: a = dir . dir.
-    using RayData = SphereRay<T>;
+struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T> {
+    using SphereMethodBase<SphereGeometric<T>, T>::intersect;
     static constexpr std::string_view name = "geometric";
 
-    /// Copies centre and radius and squares the radius.
-    static Prepared prepare(const Shape& s) { return detail::prepare_sphere(s); }
-    /// Conservative box around the sphere.
-    static Bounds3<T> bounds(const Prepared& p) { return detail::sphere_bounds(p); }
-    /// a = dir . dir of ray (once per ray, shared by every sphere).
-    static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
-
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
-    static std::optional<std::pair<T, T>> roots(const Prepared& p,
+    static std::optional<std::pair<T, T>> roots(const PreparedSphere<T>& p,
                                                 const Ray<T>& ray,
-                                                const RayData& rd) {
+                                                const SphereRay<T>& rd) {
         const Vec3<T> m = p.center - ray.org;  // origin -> centre
         const T a = rd.a;
         const T b = dot(m, ray.dir);        // a * (projection of the centre on the ray)
@@ -50,9 +37,9 @@ struct SphereGeometric : MethodDefaults<SphereGeometric<T>> {
     }
 
     /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
+    static std::optional<PrimHit<T>> intersect(const PreparedSphere<T>& p,
                                                const Ray<T>& ray,
-                                               const RayData& rd) {
+                                               const SphereRay<T>& rd) {
         const Vec3<T> m = p.center - ray.org;
         const T b = dot(m, ray.dir);
         const T c = dot(m, m) - p.radius2;

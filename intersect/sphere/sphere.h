@@ -3,6 +3,7 @@
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
+#include "intersect/method.h"
 #include "intersect/ray.h"
 
 #include <cmath>
@@ -78,6 +79,28 @@ std::optional<PrimHit<T>> pick_root(const std::optional<std::pair<T, T>>& roots,
 }
 
 }  // namespace detail
+
+/// What every sphere method shares (derive from it, CRTP): the family's types, prepare_sphere,
+/// sphere_bounds, the per-ray set-up a = dir . dir (SphereRay), and intersect as the nearest root
+/// of Self::roots(p, ray, rd) in the window. A method adds its name and roots, and writes its own
+/// intersect for an early out.
+template <class Self, class T>
+struct SphereMethodBase : FamilyRayMethod<Self,
+                                          T,
+                                          Sphere<T>,
+                                          PreparedSphere<T>,
+                                          detail::prepare_sphere<T>,
+                                          detail::sphere_bounds<T>,
+                                          SphereRay<T>> {
+    using MethodDefaults<Self>::intersect;
+
+    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
+    static std::optional<PrimHit<T>> intersect(const PreparedSphere<T>& p,
+                                               const Ray<T>& ray,
+                                               const SphereRay<T>& rd) {
+        return detail::pick_root(Self::roots(p, ray, rd), ray);
+    }
+};
 
 /// Unit outward normal of a sphere at a point on (or near) its surface.
 template <class T>

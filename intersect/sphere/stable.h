@@ -4,7 +4,6 @@
 // Baker), roots by q = -(b + sign(b) sqrt(disc)), t0 = q/a, t1 = c/q. No epsilon. Cost: 3 dots
 // per test, plus a = d.d once per ray (precompute).
 
-#include "intersect/method.h"
 #include "intersect/sphere/sphere.h"
 
 #include <cmath>
@@ -16,26 +15,13 @@ namespace rtlab {
 
 /// Numerically stable method: perpendicular-distance discriminant and the stable root pair.
 template <class T>
-struct SphereStable : MethodDefaults<SphereStable<T>> {
-    using MethodDefaults<SphereStable<T>>::intersect;
-    using Scalar = T;
-    using Shape = Sphere<T>;
-    using Prepared = PreparedSphere<T>;
-    /// The per-ray set-up: a = dir . dir.
-    using RayData = SphereRay<T>;
+struct SphereStable : SphereMethodBase<SphereStable<T>, T> {
     static constexpr std::string_view name = "stable";
 
-    /// Copies centre and radius and squares the radius.
-    static Prepared prepare(const Shape& s) { return detail::prepare_sphere(s); }
-    /// Conservative box around the sphere.
-    static Bounds3<T> bounds(const Prepared& p) { return detail::sphere_bounds(p); }
-    /// a = dir . dir of ray (once per ray, shared by every sphere).
-    static RayData precompute(const Ray<T>& ray) { return SphereRay<T>::make(ray); }
-
     /// Entering and leaving t (unclipped, entering <= leaving), or nullopt when the line misses.
-    static std::optional<std::pair<T, T>> roots(const Prepared& p,
+    static std::optional<std::pair<T, T>> roots(const PreparedSphere<T>& p,
                                                 const Ray<T>& ray,
-                                                const RayData& rd) {
+                                                const SphereRay<T>& rd) {
         // a t^2 + 2 h t + c = 0 with h = f.d (half the usual b), f = origin - centre.
         const Vec3<T> f = ray.org - p.center;
         const T a = rd.a;
@@ -53,13 +39,6 @@ struct SphereStable : MethodDefaults<SphereStable<T>> {
         const T t0 = q / a;
         const T t1 = q != T(0) ? c / q : t0;  // q == 0 only for a tangent line through the origin
         return t0 <= t1 ? std::pair<T, T>{t0, t1} : std::pair<T, T>{t1, t0};
-    }
-
-    /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
-    static std::optional<PrimHit<T>> intersect(const Prepared& p,
-                                               const Ray<T>& ray,
-                                               const RayData& rd) {
-        return detail::pick_root(roots(p, ray, rd), ray);
     }
 };
 
