@@ -228,6 +228,21 @@ TEST_CASE("stability adversarial: rays are deterministic, start in the kernel an
     }
 }
 
+/// A tracer setup: one triangle method under robust traversal of the structure spec.
+static rtlab::TraceSetup robust_setup(const char* spec, const char* method) {
+    rtlab::TraceSetup setup;
+    setup.accel = spec;
+    setup.methods = {method};
+    setup.robust = true;
+    return setup;
+}
+
+/// The structure of the tracer's first primitive set.
+static const rtlab::AnyAccel& first_accel(const rtlab::SceneTracer& tracer) {
+    return std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
+                      tracer.sets().at(0));
+}
+
 TEST_CASE("robust kd-tree walks never leak where nested splits meet at a vertex", "[stability]") {
     // The entry/exit-point walk's weak spot: planes through one vertex on two or three axes,
     // nested in the tree, crossed by a ray from the exact centre at one t. Every vertex and every
@@ -246,15 +261,9 @@ TEST_CASE("robust kd-tree walks never leak where nested splits meet at a vertex"
         for (const char* spec :
              {"brute", "bvh8", "kdtree:sah", "kdtree:sah,perfect=0", "kdtree:sah,traversal=tvalue",
               "kdtree:median", "kdtree:median,traversal=tvalue"}) {
-            rtlab::TraceSetup setup;
-            setup.accel = spec;
-            setup.methods = {"watertight"};
-            setup.robust = true;
-            const rtlab::SceneTracer tracer(scene, setup);
+            const rtlab::SceneTracer tracer(scene, robust_setup(spec, "watertight"));
             std::vector<rtlab::Vec3f> targets = mesh.positions;
-            const rtlab::AnyAccel& accel =
-                std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
-                           tracer.sets().at(0));
+            const rtlab::AnyAccel& accel = first_accel(tracer);
             for (const auto& p : rtlab::stab::structure_planes(accel)) {
                 for (int c = 0; c < 4; ++c) {
                     rtlab::Vec3f q = p.face.lo;
@@ -300,14 +309,8 @@ TEST_CASE("robust kd-tree walks lose no adversarial ray with a non-watertight me
         const rtlab::TriangleMesh& mesh = scene.meshes[0].mesh;
         for (const char* spec : {"kdtree:sah", "kdtree:sah,perfect=0",
                                  "kdtree:sah,traversal=tvalue", "kdtree:median"}) {
-            rtlab::TraceSetup setup;
-            setup.accel = spec;
-            setup.methods = {"moller_trumbore"};
-            setup.robust = true;
-            const rtlab::SceneTracer tracer(scene, setup);
-            const rtlab::AnyAccel& accel =
-                std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
-                           tracer.sets().at(0));
+            const rtlab::SceneTracer tracer(scene, robust_setup(spec, "moller_trumbore"));
+            const rtlab::AnyAccel& accel = first_accel(tracer);
             const std::vector<rtlab::Rayf> rays =
                 rtlab::stab::adversarial_rays(mesh, accel, 20000, seed * 16 + k);
             std::vector<rtlab::Hit> hits(rays.size());
@@ -330,15 +333,9 @@ TEST_CASE("robust traversal of diagonal-slab nodes is the box traversal", "[stab
         std::vector<std::vector<rtlab::Hit>> answers;
         std::vector<rtlab::Rayf> rays;
         for (const char* spec : {"bvh16", "bvh16,bounds=dop14"}) {
-            rtlab::TraceSetup setup;
-            setup.accel = spec;
-            setup.methods = {"moller_trumbore"};
-            setup.robust = true;
-            const rtlab::SceneTracer tracer(scene, setup);
+            const rtlab::SceneTracer tracer(scene, robust_setup(spec, "moller_trumbore"));
             if (rays.empty()) {
-                const rtlab::AnyAccel& accel =
-                    std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
-                               tracer.sets().at(0));
+                const rtlab::AnyAccel& accel = first_accel(tracer);
                 rays = rtlab::stab::adversarial_rays(scene.meshes[0].mesh, accel, 20000, 7);
             }
             answers.emplace_back(rays.size());
@@ -372,14 +369,8 @@ TEST_CASE("robust grid walks lose no ray from far origins", "[stability]") {
         mesh.triangles = im.faces;
         const rtlab::Scene scene = rtlab::stab::mesh_scene(mesh);
         for (const char* spec : {"grid:uniform", "grid:uniform,density=8", "grid:two_level"}) {
-            rtlab::TraceSetup setup;
-            setup.accel = spec;
-            setup.methods = {"watertight"};
-            setup.robust = true;
-            const rtlab::SceneTracer tracer(scene, setup);
-            const rtlab::AnyAccel& accel =
-                std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
-                           tracer.sets().at(0));
+            const rtlab::SceneTracer tracer(scene, robust_setup(spec, "watertight"));
+            const rtlab::AnyAccel& accel = first_accel(tracer);
             const std::vector<rtlab::stab::StructurePlane> planes =
                 rtlab::stab::structure_planes(accel);
             REQUIRE(!planes.empty());
