@@ -204,13 +204,12 @@ private:
     Sampler rng_;
 };
 
-/// The structure of the one triangle set of tracer.
+}  // namespace
+
 const AnyAccel& triangle_accel(const SceneTracer& tracer) {
     return std::visit([](const auto& set) -> const AnyAccel& { return set.accel; },
                       tracer.sets().at(0));
 }
-
-}  // namespace
 
 std::vector<Scene> adversarial_scenes(std::uint64_t seed) {
     std::vector<Scene> scenes;

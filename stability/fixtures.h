@@ -35,6 +35,9 @@ Scene mesh_scene(TriangleMesh mesh);
 /// count, seed).
 std::vector<Rayf> inside_rays(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed);
 
+/// The structure of tracer's first primitive set (the triangles of a mesh scene).
+const AnyAccel& triangle_accel(const SceneTracer& tracer);
+
 /// The adversarial case's closed meshes (scene each): UV spheres of several resolutions with
 /// vertex radii jittered by 10 to 45 %, star-shaped around the origin; seeded.
 std::vector<Scene> adversarial_scenes(std::uint64_t seed);

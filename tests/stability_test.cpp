@@ -28,7 +28,6 @@
 #include <sstream>
 #include <string>
 #include <tuple>
-#include <variant>
 
 namespace {
 
@@ -237,12 +236,6 @@ static rtlab::TraceSetup robust_setup(const char* spec, const char* method) {
     return setup;
 }
 
-/// The structure of the tracer's first primitive set.
-static const rtlab::AnyAccel& first_accel(const rtlab::SceneTracer& tracer) {
-    return std::visit([](const auto& set) -> const rtlab::AnyAccel& { return set.accel; },
-                      tracer.sets().at(0));
-}
-
 TEST_CASE("robust kd-tree walks never leak where nested splits meet at a vertex", "[stability]") {
     // The entry/exit-point walk's weak spot: planes through one vertex on two or three axes,
     // nested in the tree, crossed by a ray from the exact centre at one t. Every vertex and every
@@ -263,7 +256,7 @@ TEST_CASE("robust kd-tree walks never leak where nested splits meet at a vertex"
               "kdtree:median", "kdtree:median,traversal=tvalue"}) {
             const rtlab::SceneTracer tracer(scene, robust_setup(spec, "watertight"));
             std::vector<rtlab::Vec3f> targets = mesh.positions;
-            const rtlab::AnyAccel& accel = first_accel(tracer);
+            const rtlab::AnyAccel& accel = rtlab::stab::triangle_accel(tracer);
             for (const auto& p : rtlab::stab::structure_planes(accel)) {
                 for (int c = 0; c < 4; ++c) {
                     rtlab::Vec3f q = p.face.lo;
@@ -310,7 +303,7 @@ TEST_CASE("robust kd-tree walks lose no adversarial ray with a non-watertight me
         for (const char* spec : {"kdtree:sah", "kdtree:sah,perfect=0",
                                  "kdtree:sah,traversal=tvalue", "kdtree:median"}) {
             const rtlab::SceneTracer tracer(scene, robust_setup(spec, "moller_trumbore"));
-            const rtlab::AnyAccel& accel = first_accel(tracer);
+            const rtlab::AnyAccel& accel = rtlab::stab::triangle_accel(tracer);
             const std::vector<rtlab::Rayf> rays =
                 rtlab::stab::adversarial_rays(mesh, accel, 20000, seed * 16 + k);
             std::vector<rtlab::Hit> hits(rays.size());
@@ -335,7 +328,7 @@ TEST_CASE("robust traversal of diagonal-slab nodes is the box traversal", "[stab
         for (const char* spec : {"bvh16", "bvh16,bounds=dop14"}) {
             const rtlab::SceneTracer tracer(scene, robust_setup(spec, "moller_trumbore"));
             if (rays.empty()) {
-                const rtlab::AnyAccel& accel = first_accel(tracer);
+                const rtlab::AnyAccel& accel = rtlab::stab::triangle_accel(tracer);
                 rays = rtlab::stab::adversarial_rays(scene.meshes[0].mesh, accel, 20000, 7);
             }
             answers.emplace_back(rays.size());
@@ -370,7 +363,7 @@ TEST_CASE("robust grid walks lose no ray from far origins", "[stability]") {
         const rtlab::Scene scene = rtlab::stab::mesh_scene(mesh);
         for (const char* spec : {"grid:uniform", "grid:uniform,density=8", "grid:two_level"}) {
             const rtlab::SceneTracer tracer(scene, robust_setup(spec, "watertight"));
-            const rtlab::AnyAccel& accel = first_accel(tracer);
+            const rtlab::AnyAccel& accel = rtlab::stab::triangle_accel(tracer);
             const std::vector<rtlab::stab::StructurePlane> planes =
                 rtlab::stab::structure_planes(accel);
             REQUIRE(!planes.empty());
