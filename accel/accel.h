@@ -6,9 +6,11 @@
 #include "intersect/bounds.h"
 #include "intersect/ray.h"
 
+#include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -109,52 +111,42 @@ inline bool is_usable_box(const Bounds3f& b) {
 /// bounds.
 using ClipFn = std::function<Bounds3f(std::uint32_t id, const Bounds3f& box)>;
 
-/// The diagonal directions of the structures' extra slabs: (1, 1, 1), (1, 1, -1), (1, -1, 1) and
-/// (-1, 1, 1), unnormalised (with the box's three axes, the 14-DOP's seven slab directions;
-/// Kay & Kajiya 1986, Klosowski et al. 1998).
-inline constexpr float diag_dirs[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
-
-/// dot(diag_dirs[k], p) in double: each term exact (+-p's component), the two sums rounded (error
-/// below 2 * 2^-53 times |p.x| + |p.y| + |p.z|).
-inline double diag_dot(unsigned k, const Vec3f& p) {
-    return static_cast<double>(diag_dirs[k][0]) * static_cast<double>(p.x) +
-           static_cast<double>(diag_dirs[k][1]) * static_cast<double>(p.y) +
-           static_cast<double>(diag_dirs[k][2]) * static_cast<double>(p.z);
-}
-
-/// The corner of box b lowest along diag_dirs[k] (`low`) or highest.
-inline Vec3f diag_corner(const Bounds3f& b, unsigned k, bool low) {
-    const auto pick = [&](unsigned a) { return (diag_dirs[k][a] > 0) == low ? b.lo[a] : b.hi[a]; };
-    return {pick(0), pick(1), pick(2)};
-}
-
-/// A primitive's extents along diag_dirs: every point x of it has lo[k] <= dot(diag_dirs[k], x)
-/// <= hi[k] (exactly: the values are rounded outward).
-struct DiagExtents {
-    float lo[4];
-    float hi[4];
+/// An interval [lo, hi] of dot(dir, x) over the points x of a primitive.
+struct SlabExtent {
+    float lo, hi;
 };
 
-/// Build-time only: the DiagExtents of primitive `id`. Without it, structures that use them take
-/// the extents of the primitive's box, which add nothing to the box.
-using DiagFn = std::function<DiagExtents(std::uint32_t id)>;
+/// Build-time only: the extent along `dir` of primitive `id`, holding every point a float test
+/// of it may report (outward_extent). Layouts that bound primitives by slabs other than the
+/// box's (the wide BVHs' `bounds=dop14`) use it; without it they take the extent of the box.
+using ExtentFn = std::function<SlabExtent(std::uint32_t id, const Vec3f& dir)>;
 
-/// DiagExtents of a box (its corners'), rounded outward.
-DiagExtents diag_extents_of_box(const Bounds3f& b);
+/// dot(dir, p) in double, summed x, y, z: exact terms when dir's components are +-1 or 0.
+inline double extent_dot(const Vec3f& dir, const Vec3f& p) {
+    return static_cast<double>(dir.x) * static_cast<double>(p.x) +
+           static_cast<double>(dir.y) * static_cast<double>(p.y) +
+           static_cast<double>(dir.z) * static_cast<double>(p.z);
+}
 
-/// DiagExtents from bounds lo[k] <= dot(diag_dirs[k], x) <= hi[k] computed in double from float
-/// data by a few sums and products per term (error below 4 * 2^-53 * mag[k], mag[k] the sum of
-/// the terms' magnitudes): widened by 2^-22 * mag[k] (a few float ulps, as sphere boxes get one:
-/// the float tests of a primitive may report points a rounding outside its exact shape), then
-/// rounded outward to floats.
-DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const double mag[4]);
+/// The extent [lo, hi] computed in double from float data by a few sums and products per term
+/// (error below 4 * 2^-53 * mag, mag the sum of the terms' magnitudes), widened by 2^-22 * mag
+/// (a few float ulps, as sphere boxes get one: the float tests of a primitive may report points a
+/// rounding outside its exact shape), then rounded outward to floats.
+inline SlabExtent outward_extent(double lo, double hi, double mag) {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    const double pad = std::ldexp(mag, -22);
+    const double l = lo - pad, h = hi + pad;
+    const auto fl = static_cast<float>(l), fh = static_cast<float>(h);
+    return {static_cast<double>(fl) <= l ? fl : std::nextafter(fl, -inf),
+            static_cast<double>(fh) >= h ? fh : std::nextafter(fh, inf)};
+}
 
-/// What a builder receives: one box per primitive (index = primitive id), an optional clip and
-/// optional diagonal extents.
+/// What a builder receives: one box per primitive (index = primitive id), and optional exact
+/// geometry queries: the part inside a box, the extent along a direction.
 struct BuildInput {
     std::span<const Bounds3f> bounds;  ///< primitive bounds; must outlive the build call only
     ClipFn clip;                       ///< optional exact clipping for perfect splits
-    DiagFn diag = {};                  ///< optional extents along diag_dirs (wide `bounds=dop14`)
+    ExtentFn extent = {};              ///< optional exact extents along a direction
 };
 
 /// Size and quality figures of a built structure, for reports.

@@ -280,7 +280,7 @@ int run_render(const RenderArgs& a) {
                         static_cast<std::size_t>(a.threads));
     }
     RenderSettings rs = render_settings(a);
-    const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
+    const AccelSpec accel = parse_accel_spec(a.accel);  // bad specs fail first
     const Scene scene = load_scene(a.scene);
     check_render_memory(a, rs, scene);
     const RenderPlan plan = plan_render(scene, rs);  // bad settings fail before the build
@@ -304,7 +304,8 @@ int run_render(const RenderArgs& a) {
     print_render_stats(res, rs, a.output);
     if (!a.stats_json.empty()) {
         write_file_atomically(
-            a.stats_json, render_stats_json(a, accel, tracer, rs, res, non_finite).dump(2) + "\n");
+            a.stats_json,
+            render_stats_json(a, accel.canonical(), tracer, rs, res, non_finite).dump(2) + "\n");
     }
     return 0;
 }

@@ -43,7 +43,7 @@ int run_trace(const TraceArgs& a) {
         threads.emplace(tbb::global_control::max_allowed_parallelism,
                         static_cast<std::size_t>(a.threads));
     }
-    const std::string accel = parse_accel_spec(a.accel).canonical();  // bad specs fail first
+    const AccelSpec accel = parse_accel_spec(a.accel);  // bad specs fail first
     if (!a.hits.empty()) {
         check_output_path(a.hits);
     }
@@ -64,7 +64,7 @@ int run_trace(const TraceArgs& a) {
 
     nlohmann::json j;
     j["scene"] = a.scene;
-    j["accel"] = accel;
+    j["accel"] = accel.canonical();
     std::string methods;
     for (const std::string& name : tracer.set_methods()) {
         methods += (methods.empty() ? "" : ",") + name.substr(name.find('=') + 1);

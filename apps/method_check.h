@@ -17,9 +17,9 @@
 
 namespace rtlab::app {
 
-/// The tracer set-up for a canonical --accel spec, --method (comma-separated, at most one per
+/// The tracer set-up for a parsed --accel spec, --method (comma-separated, at most one per
 /// family: checked here, before the build) and --robust.
-inline TraceSetup checked_setup(const std::string& accel, const std::string& method, bool robust) {
+inline TraceSetup checked_setup(const AccelSpec& accel, const std::string& method, bool robust) {
     TraceSetup setup;
     setup.accel = accel;
     setup.methods = split_commas(method);

@@ -108,7 +108,7 @@ void bm_paired_build(benchmark::State& state, std::string spec, std::string scen
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     const Scene& s = bench_scene(scene).scene;
     const std::vector<Bounds3f> bounds = triangle_bounds(s);
-    const BuildInput in{bounds, {}, triangle_diag(s)};
+    const BuildInput in{bounds, {}, triangle_extent(s)};
     const auto ours = [&] { return seconds_to_build(spec, in); };
     const auto theirs = [&] {
         EmbreeScene e(s, RTC_BUILD_QUALITY_MEDIUM);  // geometry upload: not timed

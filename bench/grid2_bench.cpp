@@ -43,7 +43,7 @@ const SceneTracer& tracer(const std::string& scene, const std::string& spec) {
     if (!last || last_key != key) {
         last.reset();
         TraceSetup setup;
-        setup.accel = spec;
+        setup.accel = parse_accel_spec(spec);
         last = std::make_unique<SceneTracer>(bench_scene(scene).scene, setup);
         last_key = key;
     }
@@ -58,7 +58,7 @@ void bm_trace(benchmark::State& state, std::string spec, std::string scene, RayK
     const auto n = static_cast<double>(rays.size());
     const double nodes = static_cast<double>(st.nodes) / n;
     const double prims = static_cast<double>(st.prims) / n;
-    const CostParams p = cost_params(parse_accel_spec(t.accel_spec()));
+    const CostParams p = cost_params(t.accel_spec());
     double model = 0, epo = -1;
     for (const auto& [expected, e] : t.cost_figures(p, kind == RayKind::primary)) {
         model += expected.cost(p);

@@ -110,7 +110,7 @@ const std::vector<std::unique_ptr<SceneTracer>>& tracers(const std::string& scen
         const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
         for (const std::string& spec : kd_contenders()) {
             TraceSetup setup;
-            setup.accel = spec;
+            setup.accel = parse_accel_spec(spec);
             last.push_back(std::make_unique<SceneTracer>(bench_scene(scene).scene, setup));
         }
         last_scene = scene;

@@ -106,7 +106,7 @@ const SceneTracer& targets_tracer(const TargetsKey& key) {
     if (!last || !(last_key == key)) {
         last.reset();
         TraceSetup setup;
-        setup.accel = key.accel;
+        setup.accel = parse_accel_spec(key.accel);
         setup.robust = key.watertight;
         if (key.watertight) {
             setup.methods = {"watertight"};
@@ -150,7 +150,7 @@ void bm_trace(benchmark::State& state, TargetsKey key, RayKind kind, int threads
 void bm_build(benchmark::State& state, std::string accel, std::string scene, int threads) {
     const Scene& sc = bench_scene(scene).scene;
     const std::vector<Bounds3f> bounds = triangle_bounds(sc);
-    const BuildInput in{bounds, {}, triangle_diag(sc)};
+    const BuildInput in{bounds, {}, triangle_extent(sc)};
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
     std::vector<double> ms;
@@ -182,7 +182,7 @@ void bm_scaling_trace(benchmark::State& state, TargetsKey key, RayKind kind) {
 void bm_scaling_build(benchmark::State& state, std::string accel, std::string scene) {
     const Scene& sc = bench_scene(scene).scene;
     const std::vector<Bounds3f> bounds = triangle_bounds(sc);
-    const BuildInput in{bounds, {}, triangle_diag(sc)};
+    const BuildInput in{bounds, {}, triangle_extent(sc)};
     time_scaling(state, [&] { return seconds_to_build(accel, in); });
 }
 

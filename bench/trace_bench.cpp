@@ -42,7 +42,7 @@ void bm_trace(benchmark::State& state, std::string accel, std::string scene, Ray
         state.counters["sah_cost"] = infos.front().sah_cost;
     }
     // The one cost model (accel/cost_model.h) with the spec's ct and ci, and the measured cost.
-    const CostParams p = cost_params(parse_accel_spec(t.accel_spec()));
+    const CostParams p = cost_params(t.accel_spec());
     double model = 0, epo = -1;
     for (const auto& [expected, e] : t.cost_figures(p, true)) {
         model += expected.cost(p);

@@ -137,7 +137,7 @@ const SceneTracer& bench_tracer(const std::string& scene, const std::string& acc
     auto& slot = cache[{scene, accel}];
     if (!slot) {
         TraceSetup setup;
-        setup.accel = accel;
+        setup.accel = parse_accel_spec(accel);
         slot = std::make_unique<SceneTracer>(bench_scene(scene).scene, setup);
     }
     return *slot;
@@ -200,7 +200,7 @@ std::vector<Bounds3f> triangle_bounds(const Scene& s) {
     return out;
 }
 
-DiagFn triangle_diag(const Scene& s) {
+ExtentFn triangle_extent(const Scene& s) {
     auto tris = std::make_shared<std::vector<Trianglef>>();
     for (const MeshObject& m : s.meshes) {
         for (const auto& t : m.mesh.triangles) {
@@ -208,7 +208,7 @@ DiagFn triangle_diag(const Scene& s) {
             tris->push_back({p[t[0]], p[t[1]], p[t[2]]});
         }
     }
-    return [tris](std::uint32_t id) { return diag_shape_extents((*tris)[id]); };
+    return [tris](std::uint32_t id, const Vec3f& d) { return shape_extent((*tris)[id], d); };
 }
 
 double seconds_to_build(const std::string& spec, const BuildInput& in) {

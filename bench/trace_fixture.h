@@ -80,9 +80,9 @@ const Scene& build_soup(int sf);
 /// Triangle bounds of a mesh-only scene, in primitive order.
 std::vector<Bounds3f> triangle_bounds(const Scene& s);
 
-/// The exact diagonal extents of a mesh-only scene's triangles, in primitive order, computed on
-/// call as SceneTracer's builds compute them (`bounds=dop14`); holds its own copy of the triangles.
-DiagFn triangle_diag(const Scene& s);
+/// The exact extents of a mesh-only scene's triangles (by primitive id), computed on call as
+/// SceneTracer's builds compute them (`bounds=dop14`); holds its own copy of the triangles.
+ExtentFn triangle_extent(const Scene& s);
 
 /// Seconds to build structure `spec` from `in` (build_accel; the structure is freed after the
 /// clock stopped).

@@ -208,7 +208,7 @@ void for_each_tracer(const Scene& scene, bool robust, const Selection& sel, F&& 
             continue;
         }
         TraceSetup setup;
-        setup.accel = std::string(e.name);
+        setup.accel = default_spec(e);
         setup.methods = {"watertight"};
         setup.robust = robust;
         const SceneTracer tracer(scene, setup);

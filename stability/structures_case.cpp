@@ -284,7 +284,7 @@ std::vector<Row> run_structures(const Options& opt, const Selection& sel) {
             Tally beyond;
             for (const Workload& w : loads) {
                 TraceSetup setup;
-                setup.accel = std::string(e.name);
+                setup.accel = default_spec(e);
                 setup.methods = {w.method};
                 setup.robust = robust;
                 const SceneTracer tracer(w.scene, setup);

@@ -135,7 +135,7 @@ std::vector<Row> leak_rows(std::string_view case_name,
                         continue;
                     }
                     TraceSetup setup;
-                    setup.accel = spec;
+                    setup.accel = parse_accel_spec(spec);
                     setup.methods = {std::string(sub.method)};
                     setup.robust = sub.robust;
                     const SceneTracer tracer(scenes[k], setup);

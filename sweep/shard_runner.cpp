@@ -106,7 +106,7 @@ void use_tracer(Workspace& w, const SweepFile& s, const Case& c, int threads) {
         w.tracer.reset();
         w.tracer_key.clear();
         TraceSetup setup;
-        setup.accel = c.spec;
+        setup.accel = parse_accel_spec(c.spec);
         setup.methods = split_commas(c.methods);
         setup.robust = s.robust;
         w.tracer = std::make_unique<SceneTracer>(*w.scene, setup);

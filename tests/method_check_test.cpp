@@ -41,7 +41,7 @@ TEST_CASE("scene_families names the families a tracer builds sets for", "[method
                            Scene{}};
     for (const Scene& s : all) {
         TraceSetup setup;
-        setup.accel = "brute";
+        setup.accel = parse_accel_spec("brute");
         const SceneTracer tracer(s, setup);
         CHECK(scene_families(s) == tracer_families(tracer));
     }

@@ -56,7 +56,7 @@ Scene glass_and_mirror_flake() {
 
 RenderResult render_with(const Scene& s, const std::string& accel, RenderSettings r) {
     TraceSetup setup;
-    setup.accel = accel;
+    setup.accel = parse_accel_spec(accel);
     const SceneTracer tracer(s, setup);
     return render(s, tracer, r);
 }

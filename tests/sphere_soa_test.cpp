@@ -267,7 +267,7 @@ struct Traced {
     std::size_t leaf_bytes = 0;  ///< SceneTracer::leaf_bytes
 };
 Traced trace(const Scene& scene, const std::vector<Rayf>& rays, const std::string& spec) {
-    const SceneTracer tracer(scene, TraceSetup{spec, {"stable"}, false});
+    const SceneTracer tracer(scene, TraceSetup{parse_accel_spec(spec), {"stable"}, false});
     Traced t;
     for (const AnyPrimSet& set : tracer.sets()) {
         std::visit(
@@ -343,7 +343,7 @@ TEST_CASE("diagonal slabs find the same sphere flake hits with fewer node and le
     }
     const std::vector<Rayf> rays = test_rays(prims, 7);
     const auto counted = [&](const std::string& spec, std::vector<Hit>& hits) {
-        const SceneTracer tracer(scene, TraceSetup{spec, {"stable"}, false});
+        const SceneTracer tracer(scene, TraceSetup{parse_accel_spec(spec), {"stable"}, false});
         hits.resize(rays.size());
         TraversalStats st;
         tracer.intersect(rays, hits, &st);

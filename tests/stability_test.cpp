@@ -230,7 +230,7 @@ TEST_CASE("stability adversarial: rays are deterministic, start in the kernel an
 /// A tracer setup: one triangle method under robust traversal of the structure spec.
 static rtlab::TraceSetup robust_setup(const char* spec, const char* method) {
     rtlab::TraceSetup setup;
-    setup.accel = spec;
+    setup.accel = rtlab::parse_accel_spec(spec);
     setup.methods = {method};
     setup.robust = true;
     return setup;

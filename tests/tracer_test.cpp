@@ -157,7 +157,7 @@ Answers trace(const Scene& s,
               std::string_view method,
               bool intersector,
               bool robust) {
-    const SceneTracer tracer(s, TraceSetup{accel, {std::string(method)}, robust});
+    const SceneTracer tracer(s, TraceSetup{parse_accel_spec(accel), {std::string(method)}, robust});
     REQUIRE(!tracer.set_methods().empty());
     for (const std::string& label : tracer.set_methods()) {
         CHECK(label == std::string(family) + "=" + std::string(method));
@@ -302,7 +302,7 @@ TEST_CASE("structures large enough to prefetch children trace like brute force",
         for (const char* spec : {"bvh8,from=lbvh,max_leaf=1", "bvh4,from=lbvh,max_leaf=1",
                                  "bvh:pair,from=lbvh,max_leaf=1"}) {
             CAPTURE(spec);
-            const SceneTracer tracer(s, TraceSetup{spec, {method}, false});
+            const SceneTracer tracer(s, TraceSetup{parse_accel_spec(spec), {method}, false});
             REQUIRE(tracer.infos().size() == 1);
             CHECK(tracer.infos()[0].bytes >= prefetch_min_bytes + 4 * std::uint64_t{count});
             for (const bool robust : {false, true}) {

@@ -2,8 +2,8 @@
 // Exact-ish clipping of a triangle to a box (Sutherland & Hodgman 1974, polygon clipping against
 // the six slab planes), for kd-tree perfect splits (Havran 2000; Wald & Havran 2006). The result
 // is the bounds of the clipped polygon, intersected with the box to absorb rounding. And the
-// extents of triangles and spheres along the diagonal directions (accel/accel.h's diag_dirs), for
-// the wide BVHs' `bounds=dop14`.
+// extents of triangles and spheres along a direction (ExtentFn), for the wide BVHs'
+// `bounds=dop14`.
 
 #include "accel/accel.h"
 #include "intersect/bounds.h"
@@ -91,37 +91,30 @@ inline Bounds3f clip_shape_bounds(const Triangle<float>& t, const Bounds3f& box)
     return clip_triangle_bounds(t.p0, t.p1, t.p2, box);
 }
 
-/// A triangle's extents along diag_dirs: its vertices', rounded outward.
-inline DiagExtents diag_shape_extents(const Triangle<float>& t) {
-    double lo[4], hi[4], mag[4];
-    for (unsigned k = 0; k < 4; ++k) {
-        const auto dot = [k](const Vec3f& p) { return diag_dot(k, p); };
-        const auto size = [](const Vec3f& p) {
-            return std::abs(static_cast<double>(p.x)) + std::abs(static_cast<double>(p.y)) +
-                   std::abs(static_cast<double>(p.z));
-        };
-        lo[k] = std::min({dot(t.p0), dot(t.p1), dot(t.p2)});
-        hi[k] = std::max({dot(t.p0), dot(t.p1), dot(t.p2)});
-        mag[k] = std::max({size(t.p0), size(t.p1), size(t.p2)});
-    }
-    return diag_extents_rounded(lo, hi, mag);
+/// |dir.x p.x| + |dir.y p.y| + |dir.z p.z| in double: the magnitude of extent_dot(dir, p)'s terms.
+inline double extent_magnitude(const Vec3f& dir, const Vec3f& p) {
+    const auto term = [](float d, float x) {
+        return std::abs(static_cast<double>(d)) * std::abs(static_cast<double>(x));
+    };
+    return term(dir.x, p.x) + term(dir.y, p.y) + term(dir.z, p.z);
 }
 
-/// A sphere's extents along diag_dirs: dot(dir, centre) -+ radius * |dir| (|dir| = sqrt(3)),
-/// rounded outward.
-inline DiagExtents diag_shape_extents(const Sphere<float>& s) {
-    const double reach = static_cast<double>(s.radius) * std::sqrt(3.0);
-    const double size = std::abs(static_cast<double>(s.center.x)) +
-                        std::abs(static_cast<double>(s.center.y)) +
-                        std::abs(static_cast<double>(s.center.z)) + reach;
-    double lo[4], hi[4], mag[4];
-    for (unsigned k = 0; k < 4; ++k) {
-        const double c = diag_dot(k, s.center);
-        lo[k] = c - reach;
-        hi[k] = c + reach;
-        mag[k] = size;
-    }
-    return diag_extents_rounded(lo, hi, mag);
+/// A triangle's extent along dir: its vertices', rounded outward. A shape type gets exact extents
+/// (ExtentFn) in SceneTracer by having a shape_extent overload.
+inline SlabExtent shape_extent(const Triangle<float>& t, const Vec3f& dir) {
+    const double d0 = extent_dot(dir, t.p0), d1 = extent_dot(dir, t.p1), d2 = extent_dot(dir, t.p2);
+    const double mag = std::max(
+        {extent_magnitude(dir, t.p0), extent_magnitude(dir, t.p1), extent_magnitude(dir, t.p2)});
+    return outward_extent(std::min({d0, d1, d2}), std::max({d0, d1, d2}), mag);
+}
+
+/// A sphere's extent along dir: dot(dir, centre) -+ radius * |dir|, rounded outward.
+inline SlabExtent shape_extent(const Sphere<float>& s, const Vec3f& dir) {
+    const auto sq = [](float x) { return static_cast<double>(x) * static_cast<double>(x); };
+    const double reach =
+        static_cast<double>(s.radius) * std::sqrt(sq(dir.x) + sq(dir.y) + sq(dir.z));
+    const double c = extent_dot(dir, s.center);
+    return outward_extent(c - reach, c + reach, extent_magnitude(dir, s.center) + reach);
 }
 
 }  // namespace rtlab

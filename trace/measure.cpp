@@ -77,7 +77,7 @@ TraceMeasurement measure_trace(const SceneTracer& tracer,
         m.has_stats = true;
         m.nodes_per_ray = static_cast<double>(st.nodes) / n;
         m.prims_per_ray = static_cast<double>(st.prims) / n;
-        const CostParams p = cost_params(parse_accel_spec(tracer.accel_spec()));
+        const CostParams p = cost_params(tracer.accel_spec());
         m.measured_cost = measured_cost(p, m.nodes_per_ray, m.prims_per_ray);
         for (const auto& [expected, epo] : tracer.cost_figures(p, opt.epo)) {
             m.cost_model += expected.cost(p);

@@ -110,7 +110,7 @@ std::vector<Rayf> make_rays(const Scene& scene,
     }
 
     // Secondary rays start where primary rays hit, traced with the default structure, robust.
-    const SceneTracer tracer(scene, TraceSetup{std::string(default_accel), {}, true});
+    const SceneTracer tracer(scene, TraceSetup{parse_accel_spec(default_accel), {}, true});
     const std::vector<std::uint32_t> base = primitive_id_base(scene);
     const float diag = length(box.diagonal());
     std::vector<Rayf> out;

@@ -19,7 +19,7 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                     std::vector<std::uint32_t> ids,
                     const AccelSpec& accel,
                     const ClipFn& clip,
-                    const DiagFn& diag,
+                    const ExtentFn& extent,
                     double& build_ms) {
     PrimSet<M> set;
     set.prims.reserve(shapes.size());
@@ -31,7 +31,7 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
     }
     set.ids = std::move(ids);
     const auto t0 = std::chrono::steady_clock::now();
-    set.accel = build_accel(accel, BuildInput{bounds, clip, diag});
+    set.accel = build_accel(accel, BuildInput{bounds, clip, extent});
     build_ms +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     visit_accel(set.accel, [&](const auto& a) {
@@ -87,20 +87,20 @@ struct SetAdder {
     std::vector<std::string>& labels;
     double& build_ms;
 
-    // Adds shapes (global ids `ids`) unless empty; clip enables kd-tree perfect splits, diag the
-    // wide BVHs' exact diagonal slabs.
+    // Adds shapes (global ids `ids`) unless empty; clip enables kd-tree perfect splits, extent
+    // the wide BVHs' exact diagonal slabs.
     template <class Shape>
     void operator()(const std::vector<Shape>& shapes,
                     std::vector<std::uint32_t> ids,
                     const ClipFn& clip = {},
-                    const DiagFn& diag = {}) {
+                    const ExtentFn& extent = {}) {
         if (shapes.empty()) {
             return;
         }
         using Family = FamilyOf<Shape>;
         const std::string_view m = pick_method(family(Family::name), setup.methods);
         const bool found = with_method_named<Shape>(m, [&]<class M>() {
-            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, diag, build_ms));
+            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, extent, build_ms));
         });
         if (!found) {
             throw std::invalid_argument("internal: method " + std::string(m) + " not in its set");
@@ -135,12 +135,12 @@ ClipFn clip_for(const std::vector<S>& shapes) {
     }
 }
 
-/// Exact diagonal extents for shape types with a diag_shape_extents overload (trace/clip.h); the
-/// others' structures take their boxes' corners.
+/// Exact extents for shape types with a shape_extent overload (trace/clip.h); the others'
+/// structures take their boxes'.
 template <class S>
-DiagFn diag_for(const std::vector<S>& shapes) {
-    if constexpr (requires(const S& s) { diag_shape_extents(s); }) {
-        return [&shapes](std::uint32_t i) { return diag_shape_extents(shapes[i]); };
+ExtentFn extent_for(const std::vector<S>& shapes) {
+    if constexpr (requires(const S& s, const Vec3f& d) { shape_extent(s, d); }) {
+        return [&shapes](std::uint32_t i, const Vec3f& d) { return shape_extent(shapes[i], d); };
     } else {
         return {};
     }
@@ -148,9 +148,8 @@ DiagFn diag_for(const std::vector<S>& shapes) {
 
 }  // namespace
 
-SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(setup.robust) {
-    const AccelSpec accel = parse_accel_spec(setup.accel);  // throws on a bad spec
-    accel_spec_ = accel.canonical();
+SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup)
+    : accel_spec_(setup.accel), robust_(setup.robust) {
     for (const std::string& w : setup.methods) {
         bool known = false;
         for (const MethodFamily& f : method_families()) {
@@ -185,10 +184,10 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup) : robust_(
     if constexpr (requires { std::get<ShapeBucket<Trianglef>>(buckets.all); }) {
         triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
     }
-    SetAdder add{setup, accel, sets_, set_methods_, build_ms_};
+    SetAdder add{setup, accel_spec_, sets_, set_methods_, build_ms_};
     std::apply(
         [&](auto&... b) {
-            (add(b.shapes, std::move(b.ids), clip_for(b.shapes), diag_for(b.shapes)), ...);
+            (add(b.shapes, std::move(b.ids), clip_for(b.shapes), extent_for(b.shapes)), ...);
         },
         buckets.all);
 }

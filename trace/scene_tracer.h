@@ -19,7 +19,8 @@ namespace rtlab {
 
 /// How to trace: which structure, which intersection methods, robust traversal or not.
 struct TraceSetup {
-    std::string accel{default_accel};  ///< a structure spec NAME[,key=value]... (accel/spec.h)
+    /// The structure, parsed once from NAME[,key=value]... (accel/spec.h).
+    AccelSpec accel = parse_accel_spec(default_accel);
     /// Method names (one per family at most); families not named use their default, the first
     /// of their list (method_families()).
     std::vector<std::string> methods;
@@ -53,8 +54,8 @@ public:
                   std::span<std::uint32_t> blocker,
                   TraversalStats* stats = nullptr) const;
 
-    /// The canonical spec of the structure every set was built with (all parameters).
-    const std::string& accel_spec() const { return accel_spec_; }
+    /// The structure every set was built with; accel_spec().canonical() names all parameters.
+    const AccelSpec& accel_spec() const { return accel_spec_; }
     /// Wall time of building all structures (not of preparing primitives), in milliseconds.
     double build_ms() const { return build_ms_; }
     /// "family=method" for every set, in set order, e.g. {"triangle=watertight"}.
@@ -78,7 +79,7 @@ public:
 private:
     std::vector<AnyPrimSet> sets_;
     std::vector<std::string> set_methods_;
-    std::string accel_spec_;
+    AccelSpec accel_spec_;
     double build_ms_ = 0;
     bool robust_ = false;
     std::uint32_t prim_count_ = 0;

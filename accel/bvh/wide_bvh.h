@@ -170,7 +170,7 @@ WideBvh<8> quantize_bvh8(Bvh binary,
                          ChildOrder order = ChildOrder::area,
                          WideCollapse rule = WideCollapse::sah);
 
-/// Fills w.diags: every slot's extents along diag_dirs, from in.diag per primitive (or the
+/// Fills w.diags: every slot's extents along diag_dirs, from in.extent per primitive (or the
 /// primitive boxes' corners without it) for leaf slots and from the child node's slots for inner
 /// ones (accel/bvh/wide_diag.cpp). `in` is the input w was built from.
 template <unsigned N>

@@ -1,6 +1,6 @@
 // Diagonal slabs for the wide BVHs (`bounds=dop14`): each slot's extents along diag_dirs, so that
 // with the slot's box it is a 14-DOP (Kay & Kajiya 1986's slabs; Klosowski et al. 1998's k-DOP
-// hierarchies). Leaf slots take the union of their primitives' extents (BuildInput::diag, or the
+// hierarchies). Leaf slots take the union of their primitives' extents (BuildInput::extent, or the
 // primitive boxes' corners), inner slots the union of their child node's slots, so every slot's
 // slabs hold everything below it; the bounds are rounded outward, never cut.
 
@@ -17,18 +17,6 @@ namespace rtlab {
 namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
-
-/// The largest float <= x.
-float round_down(double x) {
-    const auto f = static_cast<float>(x);
-    return static_cast<double>(f) <= x ? f : std::nextafter(f, -inf);
-}
-
-/// The smallest float >= x.
-float round_up(double x) {
-    const auto f = static_cast<float>(x);
-    return static_cast<double>(f) >= x ? f : std::nextafter(f, inf);
-}
 
 DiagExtents empty_extents() {
     DiagExtents e;
@@ -64,32 +52,30 @@ void set_slot(WideDiag<N>& d, unsigned i, const DiagExtents& e) {
 
 }  // namespace
 
-DiagExtents diag_extents_rounded(const double lo[4], const double hi[4], const double mag[4]) {
-    // Sums of a few products of floats by +-1 or a double constant, in double: each off by less
-    // than 4 * 2^-53 * mag. The 2^-22 * mag widening covers that and, like the ulp sphere_bounds
-    // adds to a sphere's box, the float primitive tests' own rounding (a sphere tested with
-    // float radius^2 may be hit a rounding outside the exact sphere).
+DiagExtents diag_extents_of_box(const Bounds3f& b) {
+    double mag = 0;
+    for (unsigned a = 0; a < 3; ++a) {
+        mag += std::max(std::abs(static_cast<double>(b.lo[a])),
+                        std::abs(static_cast<double>(b.hi[a])));
+    }
     DiagExtents e;
     for (unsigned k = 0; k < 4; ++k) {
-        const double pad = std::ldexp(mag[k], -22);
-        e.lo[k] = round_down(lo[k] - pad);
-        e.hi[k] = round_up(hi[k] + pad);
+        const SlabExtent s = outward_extent(diag_dot(k, diag_corner(b, k, true)),
+                                            diag_dot(k, diag_corner(b, k, false)), mag);
+        e.lo[k] = s.lo;
+        e.hi[k] = s.hi;
     }
     return e;
 }
 
-DiagExtents diag_extents_of_box(const Bounds3f& b) {
-    double lo[4], hi[4], mag[4];
+DiagExtents diag_extents_of(const BuildInput& in, std::uint32_t id) {
+    DiagExtents e;
     for (unsigned k = 0; k < 4; ++k) {
-        lo[k] = diag_dot(k, diag_corner(b, k, true));
-        hi[k] = diag_dot(k, diag_corner(b, k, false));
-        mag[k] = 0;
-        for (unsigned a = 0; a < 3; ++a) {
-            mag[k] += std::max(std::abs(static_cast<double>(b.lo[a])),
-                               std::abs(static_cast<double>(b.hi[a])));
-        }
+        const SlabExtent s = in.extent(id, diag_dir(k));
+        e.lo[k] = s.lo;
+        e.hi[k] = s.hi;
     }
-    return diag_extents_rounded(lo, hi, mag);
+    return e;
 }
 
 template <unsigned N>
@@ -110,7 +96,8 @@ void add_diag_bounds(WideBvh<N>& w, const BuildInput& in) {
             for (std::uint32_t s = n.child[i]; s < n.child[i] + n.count[i]; ++s) {
                 const std::uint32_t id = w.prim_ids[s];
                 if (id != padding_slot) {
-                    extend(e, in.diag ? in.diag(id) : diag_extents_of_box(in.bounds[id]));
+                    extend(e, in.extent ? diag_extents_of(in, id)
+                                        : diag_extents_of_box(in.bounds[id]));
                 }
             }
             set_slot(w.diags[node], i, e);

@@ -4,6 +4,7 @@
 // (Wald, Benthin & Boulos 2008, "Getting rid of packets"; as Embree's BVH4/8 and tinybvh's
 // BVH8_CPU).
 
+#include "accel/bvh/diag_slabs.h"
 #include "intersect/bounds.h"
 
 #include <cstddef>

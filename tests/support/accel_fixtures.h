@@ -68,16 +68,16 @@ struct Soup {
     std::vector<Bounds3f> boxes;                             ///< bounds of each primitive
     std::vector<MollerTrumbore<float>::Prepared> triangles;  ///< triangles (kind == triangles)
 
-    /// What a builder receives: the boxes, and the triangles' exact diagonal extents.
+    /// What a builder receives: the boxes, and the triangles' exact extents.
     BuildInput input() const {
-        DiagFn diag;
+        ExtentFn extent;
         if (kind == SoupKind::triangles) {
-            diag = [this](std::uint32_t id) {
+            extent = [this](std::uint32_t id, const Vec3f& d) {
                 const auto& t = triangles[id];
-                return diag_shape_extents(Triangle<float>{t.p0, t.p1, t.p2});
+                return shape_extent(Triangle<float>{t.p0, t.p1, t.p2}, d);
             };
         }
-        return {boxes, {}, diag};
+        return {boxes, {}, extent};
     }
 
     /// The exact primitive test: boxes are hit at the slab entry clipped to [tmin, tmax].
