@@ -1,11 +1,14 @@
 // The one cost model (accel/cost_model.h) and the end-point overlap of BVHs. Every BVH layout is
-// first flattened into one node list (box, children or leaf slots), so the model and EPO are
-// written once for binary, pair and wide nodes.
+// first flattened into one node list (accel/flat_bvh.h: box, children or leaf slots), so the model
+// and EPO are written once for binary, pair, wide and any later BVH layout.
 
 #include "accel/cost_model.h"
 
+#include "accel/flat_bvh.h"
+
 #include <array>
 #include <cmath>
+#include <concepts>
 #include <functional>
 #include <span>
 #include <tbb/blocked_range.h>
@@ -24,28 +27,6 @@ struct AreaRatio {
         return root > 0 ? static_cast<double>(b.surface_area()) / root : 1.0;
     }
 };
-
-/// One node of a flattened BVH: its box and either children (kids[kid_first, kid_end)) or leaf
-/// slots prim_ids[first, first + count).
-struct FlatNode {
-    Bounds3f box;
-    std::uint32_t kid_first = 0, kid_end = 0;
-    std::uint32_t first = 0, count = 0;
-    bool leaf() const { return count > 0; }
-};
-
-struct FlatBvh {
-    std::vector<FlatNode> nodes;  ///< root at 0
-    std::vector<std::uint32_t> kids;
-    std::span<const std::uint32_t> prim_ids;
-    bool counts_child_tests = true;  ///< binary layouts count every child box test as a node
-};
-
-/// Appends a node and returns its index.
-std::uint32_t add_node(FlatBvh& f, const Bounds3f& box, std::uint32_t first, std::uint32_t count) {
-    f.nodes.push_back({box, 0, 0, first, count});
-    return static_cast<std::uint32_t>(f.nodes.size() - 1);
-}
 
 FlatBvh flatten(const Bvh& b) {
     FlatBvh f;
@@ -79,19 +60,18 @@ FlatBvh flatten(const PairBvh& b) {
         return f;
     }
     if (b.root_count > 0) {
-        add_node(f, b.root_box, b.root_child, b.root_count);
+        f.add(b.root_box, b.root_child, b.root_count);
         return f;
     }
     // (pair node index, flat index) of the inner nodes still to expand.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, add_node(f, b.root_box, 0, 0)}};
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, f.add(b.root_box, 0, 0)}};
     while (!todo.empty()) {
         const auto [pi, fi] = todo.back();
         todo.pop_back();
         const PairNode& n = b.nodes[pi];
         std::array<std::uint32_t, 2> kid{};
         for (int c = 0; c < 2; ++c) {
-            kid[c] =
-                add_node(f, n.child_bounds(c), n.count_of(c) > 0 ? n.child[c] : 0, n.count_of(c));
+            kid[c] = f.add(n.child_bounds(c), n.count_of(c) > 0 ? n.child[c] : 0, n.count_of(c));
             if (n.count_of(c) == 0) {
                 todo.emplace_back(n.child[c], kid[c]);
             }
@@ -111,7 +91,7 @@ FlatBvh flatten(const WideBvh<N>& b) {
     if (b.nodes.empty()) {
         return f;
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, add_node(f, b.bounds(), 0, 0)}};
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, f.add(b.bounds(), 0, 0)}};
     while (!todo.empty()) {
         const auto [wi, fi] = todo.back();
         todo.pop_back();
@@ -121,7 +101,7 @@ FlatBvh flatten(const WideBvh<N>& b) {
             if (!n.occupied(i)) {
                 continue;
             }
-            kid.push_back(add_node(f, n.bounds(i), n.is_leaf(i) ? n.child[i] : 0, n.count[i]));
+            kid.push_back(f.add(n.bounds(i), n.is_leaf(i) ? n.child[i] : 0, n.count[i]));
             if (!n.is_leaf(i)) {
                 todo.emplace_back(n.child[i], kid.back());
             }
@@ -132,6 +112,13 @@ FlatBvh flatten(const WideBvh<N>& b) {
     }
     return f;
 }
+
+/// True for a BVH layout: one that offers flatten (here, or beside its type for a layout added
+/// later, found by argument-dependent lookup).
+template <class T>
+concept Flattens = requires(const T& s) {
+    { flatten(s) } -> std::same_as<FlatBvh>;
+};
 
 CostEstimate flat_cost(const FlatBvh& f) {
     CostEstimate e;
@@ -311,20 +298,6 @@ CostEstimate expected_cost(const BruteForce& a) {
     return e;
 }
 
-CostEstimate expected_cost(const Bvh& a) {
-    return flat_cost(flatten(a));
-}
-CostEstimate expected_cost(const PairBvh& a) {
-    return flat_cost(flatten(a));
-}
-template <unsigned N>
-CostEstimate expected_cost(const WideBvh<N>& a) {
-    return flat_cost(flatten(a));
-}
-template CostEstimate expected_cost(const WideBvh<4>&);
-template CostEstimate expected_cost(const WideBvh<8>&);
-template CostEstimate expected_cost(const WideBvh<16>&);
-
 // The kd-tree's cells follow from the scene box and the splits on the path (pre-order nodes, the
 // below child right after its parent). Kept to the public node layout only.
 CostEstimate expected_cost(const KdTree& a) {
@@ -381,22 +354,24 @@ CostEstimate expected_cost(const TwoLevelGrid& a) {
 }
 
 CostEstimate expected_cost(const AnyAccel& a) {
-    return visit_accel(a, [](const auto& s) { return expected_cost(s); });
+    return visit_accel(a, [](const auto& s) {
+        if constexpr (Flattens<std::decay_t<decltype(s)>>) {
+            return flat_cost(flatten(s));
+        } else {
+            return expected_cost(s);
+        }
+    });
 }
 
 bool has_end_point_overlap(const AnyAccel& a) {
-    return visit_accel(a, [](const auto& s) {
-        using T = std::decay_t<decltype(s)>;
-        return std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>;
-    });
+    return visit_accel(a, [](const auto& s) { return Flattens<std::decay_t<decltype(s)>>; });
 }
 
 double end_point_overlap(const AnyAccel& a,
                          std::span<const Trianglef> triangles,
                          const CostParams& p) {
     return visit_accel(a, [&](const auto& s) -> double {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>) {
+        if constexpr (Flattens<std::decay_t<decltype(s)>>) {
             return flat_epo(flatten(s), triangles, p);
         } else {
             return -1.0;
@@ -406,9 +381,8 @@ double end_point_overlap(const AnyAccel& a,
 
 std::vector<Bounds3f> bvh_node_boxes(const AnyAccel& a) {
     return visit_accel(a, [&](const auto& s) {
-        using T = std::decay_t<decltype(s)>;
         std::vector<Bounds3f> boxes;
-        if constexpr (std::is_same_v<T, Bvh> || std::is_same_v<T, PairBvh> || is_wide_bvh<T>) {
+        if constexpr (Flattens<std::decay_t<decltype(s)>>) {
             for (const FlatNode& n : flatten(s).nodes) {
                 boxes.push_back(n.box);
             }

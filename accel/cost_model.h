@@ -44,11 +44,9 @@ struct CostEstimate {
     double cost(const CostParams& p) const { return p.ct * nodes + p.ci * prims; }
 };
 
+// The structures that are no BVH give their own model; every BVH layout is flattened
+// (accel/flat_bvh.h) and modelled once.
 CostEstimate expected_cost(const BruteForce& a);
-CostEstimate expected_cost(const Bvh& a);
-CostEstimate expected_cost(const PairBvh& a);
-template <unsigned N>
-CostEstimate expected_cost(const WideBvh<N>& a);
 CostEstimate expected_cost(const KdTree& a);
 CostEstimate expected_cost(const Grid& a);
 CostEstimate expected_cost(const TwoLevelGrid& a);
