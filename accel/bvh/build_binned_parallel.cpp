@@ -6,8 +6,7 @@
 // rule): small nodes, the most numerous, reset and sweep few bins. Nodes of at least
 // `reduce_min` primitives bin data-parallel in fixed blocks and partition into the other of two
 // buffers (ping-pong; offsets from each block's bins, so one pass); subtrees of at least
-// `task_min` primitives are tasks writing their own node chunks, stitched at the end (as
-// madmann91/bvh's mini-tree builder stitches its mini-trees).
+// `task_min` primitives are tasks of the shared TaskTree (accel/task_tree.h).
 // Deterministic: every decision depends on the node's primitives only (box unions and counts are
 // exact under any grouping, the block partition is stable), so any thread count gives the same
 // tree. Cost: O(N log N) work, O(N) memory besides the tree.
@@ -19,11 +18,9 @@
 
 #include <algorithm>
 #include <limits>
-#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_group.h>
 #include <vector>
 
 namespace rtlab {
@@ -70,12 +67,10 @@ public:
         if (root.size() == 0) {
             return bvh;
         }
-        Chunk top;
-        top.nodes.emplace_back();
-        tbb::task_group tasks;
-        subtree(top, 0, root, 0, tasks);
-        tasks.wait();
-        stitch(top, bvh);
+        // Chunk after chunk: the node order this builder has always had.
+        bvh_detail::BvhTaskTree tree({task_min, true, 2, TaskLayout::chunks}, root.size());
+        subtree(tree, tree.root(), 0, root, 0);
+        tree.splice(bvh.nodes, nullptr, bvh_detail::relink_bvh_node);
         bvh.prim_ids.resize(refs_.size());
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs_.size(), block),
                           [&](const tbb::blocked_range<std::size_t>& r) {
@@ -87,17 +82,6 @@ public:
     }
 
 private:
-    /// A task's share of the output: nodes[0] is its root (it lands in the parent chunk's slot),
-    /// nodes[1..] its pairs; subs are chunks whose roots fill the given local slots.
-    struct Chunk {
-        BvhNodes nodes;
-        struct Sub {
-            std::uint32_t slot;
-            std::unique_ptr<Chunk> chunk;
-        };
-        std::vector<Sub> subs;
-    };
-
     /// The split of a range, or none for a leaf.
     struct Decision {
         bool leaf = true;
@@ -155,40 +139,31 @@ private:
         return root;
     }
 
-    /// Builds the subtree of r into chunk ch at local slot `slot`; big children become tasks.
-    void subtree(Chunk& ch,
+    /// Builds the subtree of r into out.nodes[slot] and below; big children become tasks.
+    void subtree(bvh_detail::BvhTaskTree& tree,
+                 bvh_detail::BvhTaskTree::Chunk& out,
                  std::uint32_t slot,
                  const Range& r,
-                 std::uint32_t depth,
-                 tbb::task_group& tasks) {
-        Decision d = decide(r, depth);
+                 std::uint32_t depth) {
+        const Decision d = decide(r, depth);
         if (d.leaf) {
             if (r.alt) {
                 std::copy(scratch_.begin() + r.b, scratch_.begin() + r.e, refs_.begin() + r.b);
             }
-            ch.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
+            out.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
             return;
         }
-        const auto left = static_cast<std::uint32_t>(ch.nodes.size());
-        ch.nodes.emplace_back();
-        ch.nodes.emplace_back();
-        ch.nodes[slot] = BvhNode::make_inner(r.box.bounds(), left, d.axis);
-        for (std::uint32_t i = 0; i < 2; ++i) {
-            const Range& c = i == 0 ? d.left : d.right;
-            if (c.size() >= task_min) {
-                auto sub = std::make_unique<Chunk>();
-                Chunk* raw = sub.get();
-                ch.subs.push_back({left + i, std::move(sub)});
-                tasks.run([this, raw, c, depth, &tasks]() {
-                    raw->nodes.reserve(std::min<std::size_t>(
-                        c.size(), 2 * task_min));  // most nodes go to sub-chunks
-                    raw->nodes.emplace_back();
-                    subtree(*raw, 0, c, depth + 1, tasks);
-                });
-            } else {
-                subtree(ch, left + i, c, depth + 1, tasks);
-            }
-        }
+        const auto left = static_cast<std::uint32_t>(out.nodes.size());
+        out.nodes.emplace_back();
+        out.nodes.emplace_back();
+        out.nodes[slot] = BvhNode::make_inner(r.box.bounds(), left, d.axis);
+        const auto child = [&](const Range& c) {
+            return [&](bvh_detail::BvhTaskTree::Chunk& ch, std::uint32_t at) {
+                subtree(tree, ch, at, c, depth + 1);
+            };
+        };
+        tree.fork(out, TaskBranch{left, d.left.size(), child(d.left)},
+                  TaskBranch{left + 1, d.right.size(), child(d.right)});
     }
 
     /// Leaf or split for range r at `depth`: SAH over the bins, else the object median when the
@@ -459,42 +434,6 @@ private:
                 c->cent.extend(refs[i].twice_center());
             }
         }
-    }
-
-    /// Lays the chunks out in pre-order (a chunk's pairs, then its sub-chunks') and copies them
-    /// into bvh.nodes with their indices relocated, in parallel.
-    static void stitch(Chunk& top, Bvh& bvh) {
-        struct Place {
-            const Chunk* chunk;
-            std::uint32_t root;  // global index of local node 0
-            std::uint32_t base;  // global index of local node 1
-        };
-        std::vector<Place> places;
-        std::uint32_t next = static_cast<std::uint32_t>(top.nodes.size());
-        places.push_back({&top, 0, 1});
-        for (std::size_t p = 0; p < places.size(); ++p) {
-            const Place at = places[p];
-            for (const Chunk::Sub& s : at.chunk->subs) {
-                const std::uint32_t root = s.slot == 0 ? at.root : at.base + s.slot - 1;
-                places.push_back({s.chunk.get(), root, next});
-                next += static_cast<std::uint32_t>(s.chunk->nodes.size()) - 1;
-            }
-        }
-        bvh.nodes.resize(next);
-        tbb::parallel_for(std::size_t{0}, places.size(), [&](std::size_t p) {
-            const Place& at = places[p];
-            const BvhNodes& src = at.chunk->nodes;
-            for (std::size_t i = 0; i < src.size(); ++i) {
-                BvhNode n = src[i];
-                if (!n.is_leaf() && n.first == 0) {
-                    continue;  // a sub-chunk's placeholder: that chunk's place writes its root
-                }
-                if (!n.is_leaf()) {
-                    n.first = at.base + n.first - 1;
-                }
-                bvh.nodes[i == 0 ? at.root : at.base + i - 1] = n;
-            }
-        });
     }
 };
 

@@ -4,9 +4,9 @@
 // spatial splits: planes at bins of equal width over the node box, a straddling reference cut in
 // two (each part clipped with the input's ClipFn when it has one, else its box cut at the plane).
 // A primitive may then sit in several leaves (at most once in any one). O(N log N); subtrees of
-// large ranges build as parallel TBB tasks into their own arrays, spliced into their parent's in
-// the serial order, and each node's allowance of extra references is split between its children
-// by their sizes, so the tree is the same for any thread count.
+// large ranges are tasks of the shared TaskTree (accel/task_tree.h), and each node's allowance of
+// extra references is split between its children by their sizes, so the tree is the same for any
+// thread count.
 
 #include "accel/bvh/build_common.h"
 
@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
 
@@ -37,14 +36,11 @@ using Refs = LargeVector<Ref>;
 constexpr float overlap_alpha = 1e-5f;
 /// The references may number at most this many times the usable primitives.
 constexpr double ref_budget = 2.0;
-/// Ranges at least this large build their two children as parallel tasks.
-constexpr std::size_t parallel_min = 1u << 14;
+/// Subtrees of at least this many references are tasks of the TaskTree (more than the other
+/// builders' bvh_detail::task_min: a spatial node's binning costs more per reference).
+constexpr std::uint32_t sbvh_task_min = 1u << 14;
 
-/// A finished subtree: its root at nodes[0], inner links and leaf slots local to it.
-struct Subtree {
-    BvhNodes nodes;
-    std::vector<std::uint32_t> ids;
-};
+using Chunk = bvh_detail::BvhTaskTree::Chunk;
 
 /// The best split found so far of one kind: SAH cost (unnormalised), axis, and the object split's
 /// last left bin or the spatial split's plane.
@@ -100,11 +96,9 @@ public:
         const auto budget =
             static_cast<std::size_t>((ref_budget - 1.0) * static_cast<double>(refs.size()));
         min_overlap_ = overlap_alpha * root.surface_area();
-        Subtree t;
-        t.nodes.emplace_back();
-        build(t, 0, std::move(refs), 0, root, budget);
-        bvh.nodes = std::move(t.nodes);
-        bvh.prim_ids = std::move(t.ids);
+        bvh_detail::BvhTaskTree tree({sbvh_task_min, true, 0}, refs.size());
+        build(tree, tree.root(), 0, std::move(refs), 0, root, budget);
+        tree.splice(bvh.nodes, &bvh.prim_ids, bvh_detail::relink_bvh_node);
         return bvh;
     }
 
@@ -411,42 +405,12 @@ private:
         right.assign(mid, refs.end());
     }
 
-    static void make_leaf(Subtree& out, std::uint32_t node, const Refs& refs, const Bounds3f& box) {
+    static void make_leaf(Chunk& out, std::uint32_t node, const Refs& refs, const Bounds3f& box) {
         const auto first = static_cast<std::uint32_t>(out.ids.size());
         for (const Ref& r : refs) {
             out.ids.push_back(r.id);
         }
         out.nodes[node] = BvhNode::make_leaf(box, first, static_cast<std::uint32_t>(refs.size()));
-    }
-
-    /// Appends subtrees l and r to out as the children of out.nodes[node] (box, axis), in the
-    /// order a serial build gives: the pair, then l's descendants, then r's.
-    static void splice(Subtree& out,
-                       std::uint32_t node,
-                       const Bounds3f& box,
-                       std::uint32_t axis,
-                       const Subtree& l,
-                       const Subtree& r) {
-        const auto pair = static_cast<std::uint32_t>(out.nodes.size());
-        const auto l_nodes = static_cast<std::uint32_t>(l.nodes.size());
-        const auto l_ids = static_cast<std::uint32_t>(out.ids.size());
-        const auto r_ids = l_ids + static_cast<std::uint32_t>(l.ids.size());
-        out.nodes[node] = BvhNode::make_inner(box, pair, axis);
-        // Local node j >= 1 of l lands at pair + 1 + j, of r at pair + l_nodes + j.
-        const auto moved = [](BvhNode n, std::uint32_t node_shift, std::uint32_t id_shift) {
-            n.first += n.is_leaf() ? id_shift : node_shift;
-            return n;
-        };
-        out.nodes.push_back(moved(l.nodes[0], pair + 1, l_ids));
-        out.nodes.push_back(moved(r.nodes[0], pair + l_nodes, r_ids));
-        for (std::size_t j = 1; j < l.nodes.size(); ++j) {
-            out.nodes.push_back(moved(l.nodes[j], pair + 1, l_ids));
-        }
-        for (std::size_t j = 1; j < r.nodes.size(); ++j) {
-            out.nodes.push_back(moved(r.nodes[j], pair + l_nodes, r_ids));
-        }
-        out.ids.insert(out.ids.end(), l.ids.begin(), l.ids.end());
-        out.ids.insert(out.ids.end(), r.ids.begin(), r.ids.end());
     }
 
     /// A node's two children (refs split into left and right, the node's split axis), or false
@@ -511,7 +475,8 @@ private:
 
     // Fills out.nodes[node] with the subtree of refs (box: their union), appending its
     // descendants in depth-first pair order; it may add up to `budget` references.
-    void build(Subtree& out,
+    void build(bvh_detail::BvhTaskTree& tree,
+               Chunk& out,
                std::uint32_t node,
                Refs refs,
                std::uint32_t depth,
@@ -532,22 +497,20 @@ private:
             static_cast<double>(left.size() + right.size()));
         const std::size_t right_budget = budget - left_budget;
         const Bounds3f left_box = union_of(left), right_box = union_of(right);
-        if (n >= parallel_min) {
-            Subtree l, r;
-            l.nodes.emplace_back();
-            r.nodes.emplace_back();
-            tbb::parallel_invoke(
-                [&] { build(l, 0, std::move(left), depth + 1, left_box, left_budget); },
-                [&] { build(r, 0, std::move(right), depth + 1, right_box, right_budget); });
-            splice(out, node, box, axis, l, r);
-            return;
-        }
         const auto pair = static_cast<std::uint32_t>(out.nodes.size());
         out.nodes.emplace_back();
         out.nodes.emplace_back();
         out.nodes[node] = BvhNode::make_inner(box, pair, axis);
-        build(out, pair, std::move(left), depth + 1, left_box, left_budget);
-        build(out, pair + 1, std::move(right), depth + 1, right_box, right_budget);
+        const std::size_t nl = left.size(), nr = right.size();
+        tree.fork(
+            out,
+            TaskBranch{pair, nl,
+                       [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(left), depth + 1, left_box, left_budget);
+                       }},
+            TaskBranch{pair + 1, nr, [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(right), depth + 1, right_box, right_budget);
+                       }});
     }
 
     const BuildInput& in_;
