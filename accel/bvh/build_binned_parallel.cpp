@@ -6,12 +6,14 @@
 // rule): small nodes, the most numerous, reset and sweep few bins. Nodes of at least
 // `reduce_min` primitives bin data-parallel in fixed blocks and partition into the other of two
 // buffers (ping-pong; offsets from each block's bins, so one pass); subtrees of at least
-// `task_min` primitives are tasks of the shared TaskTree (accel/task_tree.h).
+// `task_min` primitives are tasks of the shared TaskTree (accel/task_tree.h). The bins, sweep and
+// in-place partition are the binning module's (accel/bvh/binning.h) over SSE boxes, half areas.
 // Deterministic: every decision depends on the node's primitives only (box unions and counts are
 // exact under any grouping, the block partition is stable), so any thread count gives the same
 // tree. Cost: O(N log N) work, O(N) memory besides the tree.
 
 #include "accel/bvh/binned_refs.h"
+#include "accel/bvh/binning.h"
 #include "accel/bvh/build_common.h"
 #include "base/scratch_vector.h"
 #include "base/thread_arena.h"
@@ -27,8 +29,8 @@ namespace rtlab {
 
 namespace {
 
-using binned::Bins;
 using binned::Box;
+using Bins = binning::Bins<Box>;
 using binned::PrimRef;
 using binned::V4;
 
@@ -193,28 +195,32 @@ private:
             // them can run another task on this thread. Big nodes bin in parallel (their
             // thread may run other tasks while it waits), so they own their bins, and keep each
             // block's bins for the partition's offsets.
-            thread_local Bins small(0);
-            Bins big(0);
+            thread_local Bins small;
+            Bins big;
             std::vector<Bins> per_block;
             Bins& bins = r.size() < reduce_min ? small : big;
             bin(r, nb, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins,
                 per_block);
-            float best = std::numeric_limits<float>::infinity();
-            std::uint32_t best_axis = 0, best_bin = 0;
-            sweep(bins, ch, cl, best, best_axis, best_bin);
-            if (best < std::numeric_limits<float>::infinity()) {
+            binning::BinSplit<Box> best;
+            for (std::uint32_t a = 0; a < 3; ++a) {
+                if (ch[a] > cl[a]) {
+                    binning::sweep(
+                        bins, a, [](const Box& x) { return x.half_area_filled(); },
+                        [&](std::uint32_t c) { return bvh_detail::sah_count(config_, c); }, best);
+                }
+            }
+            if (best.cost < std::numeric_limits<float>::infinity()) {
                 const float area = r.box.half_area();
                 const float leaf_cost =
                     config_.intersection_cost * bvh_detail::sah_count(config_, n) * area;
                 const float split_cost =
-                    config_.traversal_cost * area + config_.intersection_cost * best;
+                    config_.traversal_cost * area + config_.intersection_cost * best.cost;
                 if (n <= config_.max_leaf_size && leaf_cost <= split_cost) {
                     return d;
                 }
                 d.leaf = false;
-                d.axis = best_axis;
-                partition(r, bins, per_block, best_axis, best_bin, cl[best_axis], scale[best_axis],
-                          d);
+                d.axis = best.axis;
+                partition(r, bins, per_block, best, cl[best.axis], scale[best.axis], d);
                 return d;
             }
         }
@@ -238,101 +244,38 @@ private:
              Bins& out,
              std::vector<Bins>& per_block) const {
         const PrimRef* refs = refs_of(r);
-        const auto run = [&](std::size_t b, std::size_t e, Bins& acc) {
-            const float top = static_cast<float>(nb - 1);
-            alignas(16) int k[4];
-            for (std::size_t i = b; i < e; ++i) {
-                const PrimRef& p = refs[i];
-                ((p.twice_center() - lo) * scale).bins(top, k);
-                for (std::uint32_t a = 0; a < 3; ++a) {
-                    const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
-                    acc.box[s].extend(p);
-                    ++acc.prims[s];
+        out.reset(nb, false);
+        binning::reduce_blocks(
+            r.size(), out,
+            [&](Bins& acc, std::size_t first, std::size_t end) {
+                const float top = static_cast<float>(nb - 1);
+                alignas(16) int k[4];
+                for (std::size_t i = r.b + first; i < r.b + end; ++i) {
+                    const PrimRef& p = refs[i];
+                    ((p.twice_center() - lo) * scale).bins(top, k);
+                    for (std::uint32_t a = 0; a < 3; ++a) {
+                        const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
+                        acc.box[s].extend(p);
+                        ++acc.enter[s];
+                    }
                 }
-            }
-        };
-        out.reset(nb);
-        if (r.size() < reduce_min) {
-            run(r.b, r.e, out);
-            return;
-        }
-        per_block.assign(r.blocks(), Bins(nb));
-        tbb::parallel_for(std::size_t{0}, per_block.size(), [&](std::size_t k) {
-            const auto [b, e] = r.block_span(k);
-            run(b, e, per_block[k]);
-        });
-        for (const Bins& b : per_block) {
-            out.merge(b);
-        }
+            },
+            &per_block);
     }
 
-    /// The cheapest split over every axis with spread and every bin boundary (unnormalised cost
-    /// sum A * n with half areas; ties keep the first axis, then the first bin). Only the
-    /// boundaries right after a non-empty bin are tested: the boundaries up to the next non-empty
-    /// bin split the same primitives at the same cost, and the first of them is that one, so the
-    /// answer is the one of testing every boundary.
-    void sweep(const Bins& bins,
-               const float* ch,
-               const float* cl,
-               float& best,
-               std::uint32_t& best_axis,
-               std::uint32_t& best_bin) const {
-        const std::uint32_t nb = bins.count;
-        thread_local std::vector<std::uint32_t> full;  // the non-empty bins of one axis
-        thread_local std::vector<float> right_area;
-        thread_local std::vector<std::uint32_t> right_count;
-        full.resize(nb);
-        right_area.resize(nb);
-        right_count.resize(nb);
-        for (std::uint32_t a = 0; a < 3; ++a) {
-            if (!(ch[a] > cl[a])) {
-                continue;
-            }
-            const std::size_t base = a * nb;
-            std::uint32_t m = 0;
-            for (std::uint32_t k = 0; k < nb; ++k) {
-                full[m] = k;
-                m += bins.prims[base + k] != 0 ? 1 : 0;
-            }
-            Box acc;
-            std::uint32_t cnt = 0;
-            for (std::uint32_t p = m; p-- > 1;) {
-                acc.extend(bins.box[base + full[p]]);
-                cnt += bins.prims[base + full[p]];
-                right_area[p - 1] = acc.half_area_filled();
-                right_count[p - 1] = cnt;
-            }
-            acc = Box{};
-            cnt = 0;
-            for (std::uint32_t p = 0; p + 1 < m; ++p) {
-                acc.extend(bins.box[base + full[p]]);
-                cnt += bins.prims[base + full[p]];
-                const float cost = acc.half_area_filled() * bvh_detail::sah_count(config_, cnt) +
-                                   right_area[p] * bvh_detail::sah_count(config_, right_count[p]);
-                if (cost < best) {
-                    best = cost;
-                    best_axis = a;
-                    best_bin = full[p];
-                }
-            }
-        }
-    }
-
-    /// Moves the references of bins [0, split] on `axis` to the front of r: in place for a
-    /// small r, into the other buffer for a big one; fills d's children (boxes from the bins,
+    /// Moves the references of bins [0, best.bin] on best.axis to the front of r: in place for a
+    /// small r, into the other buffer for a big one; fills d's children (boxes from the sweep,
     /// centroid bounds from the pass).
     void partition(const Range& r,
                    const Bins& bins,
                    const std::vector<Bins>& per_block,
-                   std::uint32_t axis,
-                   std::uint32_t split,
+                   const binning::BinSplit<Box>& best,
                    float lo,
                    float scale,
                    Decision& d) {
-        const std::uint32_t nb = bins.count;
-        for (std::uint32_t k = 0; k < nb; ++k) {
-            (k <= split ? d.left.box : d.right.box).extend(bins.box[axis * nb + k]);
-        }
+        const std::uint32_t axis = best.axis, split = best.bin;
+        d.left.box = best.left;
+        d.right.box = best.right;
         // The bin of V4::bins is <= split, without its clamps and conversion: the bin is trunc
         // of f = (c - lo) * scale clamped to [0, nb - 1] (NaN -> 0), and split < nb - 1, so it
         // is <= split exactly when f < split + 1 or f is NaN.
@@ -342,21 +285,10 @@ private:
         };
         const std::uint32_t mid = r.b + bins.left_of(axis, split);
         if (r.size() < reduce_min) {
-            // In place: swap misplaced pairs from both ends.
             PrimRef* refs = refs_of(r);
-            std::uint32_t i = r.b, j = r.e;
-            for (;;) {
-                while (i < j && goes_left(refs[i])) {
-                    d.left.cent.extend(refs[i++].twice_center());
-                }
-                while (i < j && !goes_left(refs[j - 1])) {
-                    d.right.cent.extend(refs[--j].twice_center());
-                }
-                if (i >= j) {
-                    break;
-                }
-                std::swap(refs[i], refs[j - 1]);
-            }
+            binning::partition(refs + r.b, refs + r.e, goes_left, [&](const PrimRef& p, bool left) {
+                (left ? d.left : d.right).cent.extend(p.twice_center());
+            });
             d.left.alt = d.right.alt = r.alt;
         } else {
             parallel_partition(r, per_block, axis, split, goes_left, mid, d);

@@ -4,10 +4,12 @@
 // spatial splits: planes at bins of equal width over the node box, a straddling reference cut in
 // two (each part clipped with the input's ClipFn when it has one, else its box cut at the plane).
 // A primitive may then sit in several leaves (at most once in any one). O(N log N); subtrees of
-// large ranges are tasks of the shared TaskTree (accel/task_tree.h), and each node's allowance of
+// large ranges are tasks of the shared TaskTree (accel/task_tree.h), object and spatial bins and
+// their sweep are the binning module's (accel/bvh/binning.h), and each node's allowance of
 // extra references is split between its children by their sizes, so the tree is the same for any
 // thread count.
 
+#include "accel/bvh/binning.h"
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
@@ -42,34 +44,12 @@ constexpr std::uint32_t sbvh_task_min = 1u << 14;
 
 using Chunk = bvh_detail::BvhTaskTree::Chunk;
 
-/// The best split found so far of one kind: SAH cost (unnormalised), axis, and the object split's
-/// last left bin or the spatial split's plane.
-struct Candidate {
-    float cost = std::numeric_limits<float>::infinity();
-    std::uint32_t axis = 0;
-    std::uint32_t bin = 0;
-    float plane = 0;
-    Bounds3f left, right;  ///< object split: its children's boxes
-};
+using Bins = binning::Bins<Bounds3f>;
 
-/// add(acc, lo, hi) over [0, n) into one accumulator (a copy of `empty`) per block of
-/// bvh_detail::reduce_block indices, in parallel for n >= bvh_detail::reduce_min, then merged
-/// in block order: the same result for any thread count.
-template <class T, class Add, class Merge>
-T reduce_refs(std::size_t n, const T& empty, const Add& add, const Merge& merge) {
-    if (n < bvh_detail::reduce_min) {
-        T acc = empty;
-        add(acc, 0, n);
-        return acc;
-    }
-    std::vector<T> part((n + bvh_detail::reduce_block - 1) / bvh_detail::reduce_block, empty);
-    bvh_detail::for_blocks(
-        n, [&](std::size_t k, std::size_t lo, std::size_t hi) { add(part[k], lo, hi); });
-    for (std::size_t k = 1; k < part.size(); ++k) {
-        merge(part[0], part[k]);
-    }
-    return std::move(part[0]);
-}
+/// The best split found so far of one kind (binning::BinSplit) with the spatial split's plane.
+struct Candidate : binning::BinSplit<Bounds3f> {
+    float plane = 0;
+};
 
 class SbvhBuilder {
 public:
@@ -103,26 +83,29 @@ public:
     }
 
 private:
+    /// A box that binning::reduce_blocks can merge.
+    struct Union : Bounds3f {
+        void merge(const Union& o) { extend(o); }
+    };
+
     static Bounds3f union_of(const Refs& refs) {
-        return reduce_refs(
-            refs.size(), Bounds3f{},
-            [&](Bounds3f& b, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    b.extend(refs[i].box);
-                }
-            },
-            [](Bounds3f& a, const Bounds3f& b) { a.extend(b); });
+        Union u;
+        binning::reduce_blocks(refs.size(), u, [&](Union& b, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                b.extend(refs[i].box);
+            }
+        });
+        return u;
     }
 
     static Bounds3f centroid_bounds(const Refs& refs) {
-        return reduce_refs(
-            refs.size(), Bounds3f{},
-            [&](Bounds3f& b, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    b.extend(refs[i].box.center());
-                }
-            },
-            [](Bounds3f& a, const Bounds3f& b) { a.extend(b); });
+        Union u;
+        binning::reduce_blocks(refs.size(), u, [&](Union& b, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                b.extend(refs[i].box.center());
+            }
+        });
+        return u;
     }
 
     float sah(std::uint32_t n) const { return bvh_detail::sah_count(cfg_, n); }
@@ -155,59 +138,11 @@ private:
         return h;
     }
 
-    /// Per-bin boxes and counts on all three axes (bins_ per axis, axis after axis): for object
-    /// bins `enter` counts the centres (and `leave` is unused); for spatial bins a reference's
-    /// parts extend the bins it spans, `enter` counts it in its first bin and `leave` in its last.
-    struct Bins {
-        std::vector<Bounds3f> box;
-        std::vector<std::uint32_t> enter, leave;
-
-        void merge(const Bins& o) {
-            for (std::size_t k = 0; k < box.size(); ++k) {
-                box[k].extend(o.box[k]);
-                enter[k] += o.enter[k];
-                leave[k] += o.leave[k];
-            }
-        }
-    };
-
-    Bins empty_bins() const {
-        const std::size_t n = 3 * std::size_t{bins_};
-        return {std::vector<Bounds3f>(n), std::vector<std::uint32_t>(n),
-                std::vector<std::uint32_t>(n)};
-    }
-
-    /// The planes between the bins of axis a of g by the SAH: a split after bin k puts the
-    /// references entering bins [0, k] left and those leaving bins (k, end) right; keeps the
-    /// cheapest in best (unnormalised cost, axis, bin, children's boxes).
-    void sweep(const Bins& g, std::uint32_t a, bool spatial, Candidate& best) const {
-        const Bounds3f* box = &g.box[a * bins_];
-        const std::uint32_t* enter = &g.enter[a * bins_];
-        const std::uint32_t* leave = spatial ? &g.leave[a * bins_] : enter;
-        std::vector<Bounds3f> right_box(bins_);
-        std::vector<std::uint32_t> right_count(bins_);
-        Bounds3f acc;
-        std::uint32_t cnt = 0;
-        for (std::uint32_t k = bins_ - 1; k > 0; --k) {
-            acc.extend(box[k]);
-            cnt += leave[k];
-            right_box[k - 1] = acc;
-            right_count[k - 1] = cnt;
-        }
-        acc = Bounds3f{};
-        cnt = 0;
-        for (std::uint32_t k = 0; k + 1 < bins_; ++k) {
-            acc.extend(box[k]);
-            cnt += enter[k];
-            if (cnt == 0 || right_count[k] == 0) {
-                continue;
-            }
-            const float cost =
-                acc.surface_area() * sah(cnt) + right_box[k].surface_area() * sah(right_count[k]);
-            if (cost < best.cost) {
-                best = {cost, a, k, 0.0f, acc, right_box[k]};
-            }
-        }
+    /// The SAH's best plane of axis a of g kept in best (binning::sweep with surface areas).
+    void sweep(const Bins& g, std::uint32_t a, Candidate& best) const {
+        binning::sweep(
+            g, a, [](const Bounds3f& b) { return b.surface_area(); },
+            [&](std::uint32_t n) { return sah(n); }, best);
     }
 
     /// The object bins' scale on each axis (0 where the centres coincide).
@@ -223,24 +158,22 @@ private:
     /// Binned SAH over the references' centres (Wald 2007), with the children's boxes.
     Candidate object_split(const Refs& refs, const Bounds3f& cb) const {
         const std::array<float, 3> scale = object_scale(cb);
-        const Bins g = reduce_refs(
-            refs.size(), empty_bins(),
-            [&](Bins& acc, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    const Vec3f c = refs[i].box.center();
-                    for (std::uint32_t a = 0; a < 3; ++a) {
-                        const std::uint32_t k =
-                            a * bins_ + bvh_detail::centroid_bin(c[a], cb.lo[a], scale[a], bins_);
-                        acc.box[k].extend(refs[i].box);
-                        ++acc.enter[k];
-                    }
+        Bins g(bins_, false);
+        binning::reduce_blocks(refs.size(), g, [&](Bins& acc, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                const Vec3f c = refs[i].box.center();
+                for (std::uint32_t a = 0; a < 3; ++a) {
+                    const std::uint32_t k =
+                        a * bins_ + bvh_detail::centroid_bin(c[a], cb.lo[a], scale[a], bins_);
+                    acc.box[k].extend(refs[i].box);
+                    ++acc.enter[k];
                 }
-            },
-            [](Bins& a, const Bins& b) { a.merge(b); });
+            }
+        });
         Candidate best;
         for (std::uint32_t a = 0; a < 3; ++a) {
             if (scale[a] != 0.0f) {
-                sweep(g, a, false, best);
+                sweep(g, a, best);
             }
         }
         return best;
@@ -302,22 +235,20 @@ private:
     /// Stich et al.'s spatial split: each reference's parts in the bins it spans (entering the
     /// first, leaving the last), the plane between bins with the lowest SAH.
     Candidate spatial_split(const Refs& refs, const Bounds3f& node) const {
-        const Bins g = reduce_refs(
-            refs.size(), empty_bins(),
-            [&](Bins& acc, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    for (std::uint32_t a = 0; a < 3; ++a) {
-                        if (spatial_axis(node, a)) {
-                            add_spatial(acc, refs[i], node, a);
-                        }
+        Bins g(bins_, true);
+        binning::reduce_blocks(refs.size(), g, [&](Bins& acc, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                for (std::uint32_t a = 0; a < 3; ++a) {
+                    if (spatial_axis(node, a)) {
+                        add_spatial(acc, refs[i], node, a);
                     }
                 }
-            },
-            [](Bins& a, const Bins& b) { a.merge(b); });
+            }
+        });
         Candidate best;
         for (std::uint32_t a = 0; a < 3; ++a) {
             if (spatial_axis(node, a)) {
-                sweep(g, a, true, best);
+                sweep(g, a, best);
             }
         }
         best.plane = plane(node, best.axis, best.bin + 1);
