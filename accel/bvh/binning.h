@@ -154,6 +154,8 @@ T* partition(T* first, T* last, const Pred& goes_left, const Seen& seen) {
             return first;
         }
         std::swap(*first, last[-1]);
+        seen(*first++, true);
+        seen(*--last, false);
     }
 }
 
