@@ -107,22 +107,19 @@ public:
             side = std::make_unique_for_overwrite<Side[]>(in_.bounds.size());
         }
         classify(ev[best.axis], ids, best, side.get());
-        std::size_t nl = 0, nr = 0;
-        for (const std::uint32_t id : ids) {
-            nl += side[id] != side_right ? 1 : 0;
-            nr += side[id] != side_left ? 1 : 0;
-        }
         EventLists left, right;
         split_lists(ev, best, ids, box, side.get(), left, right);
         const Bounds3f left_box = kd_detail::half_box(box, best.axis, best.pos, 0);
         const Bounds3f right_box = kd_detail::half_box(box, best.axis, best.pos, 1);
+        // Both children are tasks when this node has task_min primitives or more (counting
+        // theirs would take another pass over the ids).
         kd_detail::put_inner(
             tree, out, slot, best.axis, best.pos,
-            TaskBranch{Tree::append, nl,
+            TaskBranch{Tree::append, n,
                        [&](Chunk& c, std::uint32_t at) {
                            build(tree, c, at, std::move(left), left_box, depth + 1);
                        }},
-            TaskBranch{Tree::append, nr, [&](Chunk& c, std::uint32_t at) {
+            TaskBranch{Tree::append, n, [&](Chunk& c, std::uint32_t at) {
                            build(tree, c, at, std::move(right), right_box, depth + 1);
                        }});
     }
