@@ -1,14 +1,13 @@
 #pragma once
 // The data of the parallel binned SAH builder (accel/bvh/build_binned_parallel.cpp, its only
-// user): four-float vectors (SSE when available), 32-byte primitive references, boxes of two
-// vectors and the per-axis bins. Plain data with the few operations binning needs.
+// user): four-float vectors (SSE when available), 32-byte primitive references and boxes of two
+// vectors, binned by accel/bvh/binning.h. Plain data with the few operations binning needs.
 
 #include "intersect/bounds.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <limits>
-#include <vector>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -158,35 +157,6 @@ struct Box {
         lo.store(a);
         hi.store(b);
         return {{a[0], a[1], a[2]}, {b[0], b[1], b[2]}};
-    }
-};
-
-/// Bin boxes and counts of all three axes.
-struct Bins {
-    std::uint32_t count = 0;
-    std::vector<Box> box;              // [axis * count + k]
-    std::vector<std::uint32_t> prims;  // [axis * count + k]
-
-    explicit Bins(std::uint32_t n) : count(n), box(3 * n), prims(3 * n, 0) {}
-    /// Empty bins, n per axis (reuses the storage).
-    void reset(std::uint32_t n) {
-        count = n;
-        box.assign(3 * std::size_t{n}, Box{});
-        prims.assign(3 * std::size_t{n}, 0);
-    }
-    /// Primitives in bins [0, split] of `axis`: those a split after bin `split` puts left.
-    std::uint32_t left_of(std::uint32_t axis, std::uint32_t split) const {
-        std::uint32_t c = 0;
-        for (std::uint32_t k = 0; k <= split; ++k) {
-            c += prims[axis * count + k];
-        }
-        return c;
-    }
-    void merge(const Bins& o) {
-        for (std::size_t i = 0; i < box.size(); ++i) {
-            box[i].extend(o.box[i]);
-            prims[i] += o.prims[i];
-        }
     }
 };
 

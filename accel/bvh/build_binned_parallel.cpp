@@ -6,32 +6,31 @@
 // rule): small nodes, the most numerous, reset and sweep few bins. Nodes of at least
 // `reduce_min` primitives bin data-parallel in fixed blocks and partition into the other of two
 // buffers (ping-pong; offsets from each block's bins, so one pass); subtrees of at least
-// `task_min` primitives are tasks writing their own node chunks, stitched at the end (as
-// madmann91/bvh's mini-tree builder stitches its mini-trees).
+// `task_min` primitives are tasks of the shared TaskTree (accel/task_tree.h). The bins, sweep and
+// in-place partition are the binning module's (accel/bvh/binning.h) over SSE boxes, half areas.
 // Deterministic: every decision depends on the node's primitives only (box unions and counts are
 // exact under any grouping, the block partition is stable), so any thread count gives the same
 // tree. Cost: O(N log N) work, O(N) memory besides the tree.
 
 #include "accel/bvh/binned_refs.h"
+#include "accel/bvh/binning.h"
 #include "accel/bvh/build_common.h"
 #include "base/scratch_vector.h"
 #include "base/thread_arena.h"
 
 #include <algorithm>
 #include <limits>
-#include <memory>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_group.h>
 #include <vector>
 
 namespace rtlab {
 
 namespace {
 
-using binned::Bins;
 using binned::Box;
+using Bins = binning::Bins<Box>;
 using binned::PrimRef;
 using binned::V4;
 
@@ -70,12 +69,10 @@ public:
         if (root.size() == 0) {
             return bvh;
         }
-        Chunk top;
-        top.nodes.emplace_back();
-        tbb::task_group tasks;
-        subtree(top, 0, root, 0, tasks);
-        tasks.wait();
-        stitch(top, bvh);
+        // Chunk after chunk: the node order this builder has always had.
+        bvh_detail::BvhTaskTree tree({task_min, true, 2, TaskLayout::chunks}, root.size());
+        subtree(tree, tree.root(), 0, root, 0);
+        tree.splice(bvh.nodes, nullptr, bvh_detail::relink_bvh_node);
         bvh.prim_ids.resize(refs_.size());
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs_.size(), block),
                           [&](const tbb::blocked_range<std::size_t>& r) {
@@ -87,17 +84,6 @@ public:
     }
 
 private:
-    /// A task's share of the output: nodes[0] is its root (it lands in the parent chunk's slot),
-    /// nodes[1..] its pairs; subs are chunks whose roots fill the given local slots.
-    struct Chunk {
-        BvhNodes nodes;
-        struct Sub {
-            std::uint32_t slot;
-            std::unique_ptr<Chunk> chunk;
-        };
-        std::vector<Sub> subs;
-    };
-
     /// The split of a range, or none for a leaf.
     struct Decision {
         bool leaf = true;
@@ -155,40 +141,31 @@ private:
         return root;
     }
 
-    /// Builds the subtree of r into chunk ch at local slot `slot`; big children become tasks.
-    void subtree(Chunk& ch,
+    /// Builds the subtree of r into out.nodes[slot] and below; big children become tasks.
+    void subtree(bvh_detail::BvhTaskTree& tree,
+                 bvh_detail::BvhTaskTree::Chunk& out,
                  std::uint32_t slot,
                  const Range& r,
-                 std::uint32_t depth,
-                 tbb::task_group& tasks) {
-        Decision d = decide(r, depth);
+                 std::uint32_t depth) {
+        const Decision d = decide(r, depth);
         if (d.leaf) {
             if (r.alt) {
                 std::copy(scratch_.begin() + r.b, scratch_.begin() + r.e, refs_.begin() + r.b);
             }
-            ch.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
+            out.nodes[slot] = BvhNode::make_leaf(r.box.bounds(), r.b, r.size());
             return;
         }
-        const auto left = static_cast<std::uint32_t>(ch.nodes.size());
-        ch.nodes.emplace_back();
-        ch.nodes.emplace_back();
-        ch.nodes[slot] = BvhNode::make_inner(r.box.bounds(), left, d.axis);
-        for (std::uint32_t i = 0; i < 2; ++i) {
-            const Range& c = i == 0 ? d.left : d.right;
-            if (c.size() >= task_min) {
-                auto sub = std::make_unique<Chunk>();
-                Chunk* raw = sub.get();
-                ch.subs.push_back({left + i, std::move(sub)});
-                tasks.run([this, raw, c, depth, &tasks]() {
-                    raw->nodes.reserve(std::min<std::size_t>(
-                        c.size(), 2 * task_min));  // most nodes go to sub-chunks
-                    raw->nodes.emplace_back();
-                    subtree(*raw, 0, c, depth + 1, tasks);
-                });
-            } else {
-                subtree(ch, left + i, c, depth + 1, tasks);
-            }
-        }
+        const auto left = static_cast<std::uint32_t>(out.nodes.size());
+        out.nodes.emplace_back();
+        out.nodes.emplace_back();
+        out.nodes[slot] = BvhNode::make_inner(r.box.bounds(), left, d.axis);
+        const auto child = [&](const Range& c) {
+            return [&](bvh_detail::BvhTaskTree::Chunk& ch, std::uint32_t at) {
+                subtree(tree, ch, at, c, depth + 1);
+            };
+        };
+        tree.fork(out, TaskBranch{left, d.left.size(), child(d.left)},
+                  TaskBranch{left + 1, d.right.size(), child(d.right)});
     }
 
     /// Leaf or split for range r at `depth`: SAH over the bins, else the object median when the
@@ -218,28 +195,32 @@ private:
             // them can run another task on this thread. Big nodes bin in parallel (their
             // thread may run other tasks while it waits), so they own their bins, and keep each
             // block's bins for the partition's offsets.
-            thread_local Bins small(0);
-            Bins big(0);
+            thread_local Bins small;
+            Bins big;
             std::vector<Bins> per_block;
             Bins& bins = r.size() < reduce_min ? small : big;
             bin(r, nb, V4::set(cl[0], cl[1], cl[2]), V4::set(scale[0], scale[1], scale[2]), bins,
                 per_block);
-            float best = std::numeric_limits<float>::infinity();
-            std::uint32_t best_axis = 0, best_bin = 0;
-            sweep(bins, ch, cl, best, best_axis, best_bin);
-            if (best < std::numeric_limits<float>::infinity()) {
+            binning::BinSplit<Box> best;
+            for (std::uint32_t a = 0; a < 3; ++a) {
+                if (ch[a] > cl[a]) {
+                    binning::sweep(
+                        bins, a, [](const Box& x) { return x.half_area_filled(); },
+                        [&](std::uint32_t c) { return bvh_detail::sah_count(config_, c); }, best);
+                }
+            }
+            if (best.cost < std::numeric_limits<float>::infinity()) {
                 const float area = r.box.half_area();
                 const float leaf_cost =
                     config_.intersection_cost * bvh_detail::sah_count(config_, n) * area;
                 const float split_cost =
-                    config_.traversal_cost * area + config_.intersection_cost * best;
+                    config_.traversal_cost * area + config_.intersection_cost * best.cost;
                 if (n <= config_.max_leaf_size && leaf_cost <= split_cost) {
                     return d;
                 }
                 d.leaf = false;
-                d.axis = best_axis;
-                partition(r, bins, per_block, best_axis, best_bin, cl[best_axis], scale[best_axis],
-                          d);
+                d.axis = best.axis;
+                partition(r, bins, per_block, best, cl[best.axis], scale[best.axis], d);
                 return d;
             }
         }
@@ -263,101 +244,38 @@ private:
              Bins& out,
              std::vector<Bins>& per_block) const {
         const PrimRef* refs = refs_of(r);
-        const auto run = [&](std::size_t b, std::size_t e, Bins& acc) {
-            const float top = static_cast<float>(nb - 1);
-            alignas(16) int k[4];
-            for (std::size_t i = b; i < e; ++i) {
-                const PrimRef& p = refs[i];
-                ((p.twice_center() - lo) * scale).bins(top, k);
-                for (std::uint32_t a = 0; a < 3; ++a) {
-                    const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
-                    acc.box[s].extend(p);
-                    ++acc.prims[s];
+        out.reset(nb, false);
+        binning::reduce_blocks(
+            r.size(), out,
+            [&](Bins& acc, std::size_t first, std::size_t end) {
+                const float top = static_cast<float>(nb - 1);
+                alignas(16) int k[4];
+                for (std::size_t i = r.b + first; i < r.b + end; ++i) {
+                    const PrimRef& p = refs[i];
+                    ((p.twice_center() - lo) * scale).bins(top, k);
+                    for (std::uint32_t a = 0; a < 3; ++a) {
+                        const std::size_t s = a * nb + static_cast<std::uint32_t>(k[a]);
+                        acc.box[s].extend(p);
+                        ++acc.enter[s];
+                    }
                 }
-            }
-        };
-        out.reset(nb);
-        if (r.size() < reduce_min) {
-            run(r.b, r.e, out);
-            return;
-        }
-        per_block.assign(r.blocks(), Bins(nb));
-        tbb::parallel_for(std::size_t{0}, per_block.size(), [&](std::size_t k) {
-            const auto [b, e] = r.block_span(k);
-            run(b, e, per_block[k]);
-        });
-        for (const Bins& b : per_block) {
-            out.merge(b);
-        }
+            },
+            &per_block);
     }
 
-    /// The cheapest split over every axis with spread and every bin boundary (unnormalised cost
-    /// sum A * n with half areas; ties keep the first axis, then the first bin). Only the
-    /// boundaries right after a non-empty bin are tested: the boundaries up to the next non-empty
-    /// bin split the same primitives at the same cost, and the first of them is that one, so the
-    /// answer is the one of testing every boundary.
-    void sweep(const Bins& bins,
-               const float* ch,
-               const float* cl,
-               float& best,
-               std::uint32_t& best_axis,
-               std::uint32_t& best_bin) const {
-        const std::uint32_t nb = bins.count;
-        thread_local std::vector<std::uint32_t> full;  // the non-empty bins of one axis
-        thread_local std::vector<float> right_area;
-        thread_local std::vector<std::uint32_t> right_count;
-        full.resize(nb);
-        right_area.resize(nb);
-        right_count.resize(nb);
-        for (std::uint32_t a = 0; a < 3; ++a) {
-            if (!(ch[a] > cl[a])) {
-                continue;
-            }
-            const std::size_t base = a * nb;
-            std::uint32_t m = 0;
-            for (std::uint32_t k = 0; k < nb; ++k) {
-                full[m] = k;
-                m += bins.prims[base + k] != 0 ? 1 : 0;
-            }
-            Box acc;
-            std::uint32_t cnt = 0;
-            for (std::uint32_t p = m; p-- > 1;) {
-                acc.extend(bins.box[base + full[p]]);
-                cnt += bins.prims[base + full[p]];
-                right_area[p - 1] = acc.half_area_filled();
-                right_count[p - 1] = cnt;
-            }
-            acc = Box{};
-            cnt = 0;
-            for (std::uint32_t p = 0; p + 1 < m; ++p) {
-                acc.extend(bins.box[base + full[p]]);
-                cnt += bins.prims[base + full[p]];
-                const float cost = acc.half_area_filled() * bvh_detail::sah_count(config_, cnt) +
-                                   right_area[p] * bvh_detail::sah_count(config_, right_count[p]);
-                if (cost < best) {
-                    best = cost;
-                    best_axis = a;
-                    best_bin = full[p];
-                }
-            }
-        }
-    }
-
-    /// Moves the references of bins [0, split] on `axis` to the front of r: in place for a
-    /// small r, into the other buffer for a big one; fills d's children (boxes from the bins,
+    /// Moves the references of bins [0, best.bin] on best.axis to the front of r: in place for a
+    /// small r, into the other buffer for a big one; fills d's children (boxes from the sweep,
     /// centroid bounds from the pass).
     void partition(const Range& r,
                    const Bins& bins,
                    const std::vector<Bins>& per_block,
-                   std::uint32_t axis,
-                   std::uint32_t split,
+                   const binning::BinSplit<Box>& best,
                    float lo,
                    float scale,
                    Decision& d) {
-        const std::uint32_t nb = bins.count;
-        for (std::uint32_t k = 0; k < nb; ++k) {
-            (k <= split ? d.left.box : d.right.box).extend(bins.box[axis * nb + k]);
-        }
+        const std::uint32_t axis = best.axis, split = best.bin;
+        d.left.box = best.left;
+        d.right.box = best.right;
         // The bin of V4::bins is <= split, without its clamps and conversion: the bin is trunc
         // of f = (c - lo) * scale clamped to [0, nb - 1] (NaN -> 0), and split < nb - 1, so it
         // is <= split exactly when f < split + 1 or f is NaN.
@@ -367,21 +285,10 @@ private:
         };
         const std::uint32_t mid = r.b + bins.left_of(axis, split);
         if (r.size() < reduce_min) {
-            // In place: swap misplaced pairs from both ends.
             PrimRef* refs = refs_of(r);
-            std::uint32_t i = r.b, j = r.e;
-            for (;;) {
-                while (i < j && goes_left(refs[i])) {
-                    d.left.cent.extend(refs[i++].twice_center());
-                }
-                while (i < j && !goes_left(refs[j - 1])) {
-                    d.right.cent.extend(refs[--j].twice_center());
-                }
-                if (i >= j) {
-                    break;
-                }
-                std::swap(refs[i], refs[j - 1]);
-            }
+            binning::partition(refs + r.b, refs + r.e, goes_left, [&](const PrimRef& p, bool left) {
+                (left ? d.left : d.right).cent.extend(p.twice_center());
+            });
             d.left.alt = d.right.alt = r.alt;
         } else {
             parallel_partition(r, per_block, axis, split, goes_left, mid, d);
@@ -459,42 +366,6 @@ private:
                 c->cent.extend(refs[i].twice_center());
             }
         }
-    }
-
-    /// Lays the chunks out in pre-order (a chunk's pairs, then its sub-chunks') and copies them
-    /// into bvh.nodes with their indices relocated, in parallel.
-    static void stitch(Chunk& top, Bvh& bvh) {
-        struct Place {
-            const Chunk* chunk;
-            std::uint32_t root;  // global index of local node 0
-            std::uint32_t base;  // global index of local node 1
-        };
-        std::vector<Place> places;
-        std::uint32_t next = static_cast<std::uint32_t>(top.nodes.size());
-        places.push_back({&top, 0, 1});
-        for (std::size_t p = 0; p < places.size(); ++p) {
-            const Place at = places[p];
-            for (const Chunk::Sub& s : at.chunk->subs) {
-                const std::uint32_t root = s.slot == 0 ? at.root : at.base + s.slot - 1;
-                places.push_back({s.chunk.get(), root, next});
-                next += static_cast<std::uint32_t>(s.chunk->nodes.size()) - 1;
-            }
-        }
-        bvh.nodes.resize(next);
-        tbb::parallel_for(std::size_t{0}, places.size(), [&](std::size_t p) {
-            const Place& at = places[p];
-            const BvhNodes& src = at.chunk->nodes;
-            for (std::size_t i = 0; i < src.size(); ++i) {
-                BvhNode n = src[i];
-                if (!n.is_leaf() && n.first == 0) {
-                    continue;  // a sub-chunk's placeholder: that chunk's place writes its root
-                }
-                if (!n.is_leaf()) {
-                    n.first = at.base + n.first - 1;
-                }
-                bvh.nodes[i == 0 ? at.root : at.base + i - 1] = n;
-            }
-        });
     }
 };
 

@@ -4,6 +4,7 @@
 // object-median split and the depth guard that keeps every leaf at depth <= 64.
 
 #include "accel/bvh/bvh.h"
+#include "accel/task_tree.h"
 #include "base/scratch_vector.h"
 #include "base/thread_arena.h"
 
@@ -12,12 +13,10 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
 
@@ -150,9 +149,19 @@ std::string check_from_root(std::size_t nodes, const Item& root, const F& check)
 /// for a whole level. Unions and counts are exact under any grouping: same trees for any threads.
 inline constexpr std::uint32_t reduce_min = 1u << 16;
 inline constexpr std::uint32_t reduce_block = 1u << 14;
-/// Subtrees of at least this many primitives are built by tasks of their own into their own
-/// node chunks, spliced in the order a serial build gives (the same tree for any threads).
+/// Subtrees of at least this many primitives are built by tasks of their own (TaskTree).
 inline constexpr std::uint32_t task_min = 4096;
+
+/// The task tree of the BVH builders; leaf ids per chunk only for builders that list them so.
+using BvhTaskTree = TaskTree<BvhNodes>;
+
+/// TaskTree's relink of a BVH node: an inner node's child pair through node_of, a leaf's slots
+/// through id_of (slots of one shared array, of builders without chunk lists, stay as they are).
+inline constexpr auto relink_bvh_node = [](BvhNode n, const auto& node_of, const auto& id_of) {
+    n.first =
+        static_cast<std::uint32_t>(n.is_leaf() ? id_of(n.first, n.prim_count()) : node_of(n.first));
+    return n;
+};
 
 /// f(k, lo, hi) for every block k = [lo, hi) of reduce_block indices of [0, n), in parallel.
 template <class F>
@@ -382,13 +391,13 @@ public:
     /// that every leaf below stays at depth <= 64: invariant depth + ceil_log2(n) <= 64.
     static bool must_balance(std::uint32_t depth, std::uint32_t n);
 
-    /// Runs the recursion, children of large ranges as parallel TBB tasks when `parallel`; once.
-    /// split(*this, b, e, box, balance) returns a Split or nullopt for a leaf; when balance is true
-    /// it must return a balanced split, and it must split whenever e - b > max_leaf_size. It may
-    /// run concurrently on disjoint ranges, touching only ids[b, e) and scratch of its own range or
-    /// thread. With NodeBoxes::after_split the split is handed an empty box (it must not need one)
-    /// and each node's box is filled in once its subtree is built. Returns the finished tree, the
-    /// same for any thread count and either NodeBoxes.
+    /// Runs the recursion, children of task_min primitives or more as parallel TBB tasks when
+    /// `parallel`; once. split(*this, b, e, box, balance) returns a Split or nullopt for a leaf;
+    /// when balance is true it must return a balanced split, and it must split whenever e - b >
+    /// max_leaf_size. It may run concurrently on disjoint ranges, touching only ids[b, e) and
+    /// scratch of its own range or thread. With NodeBoxes::after_split the split is handed an empty
+    /// box (it must not need one) and each node's box is filled in once its subtree is built.
+    /// Returns the finished tree, the same for any thread count and either NodeBoxes.
     template <NodeBoxes Boxes = NodeBoxes::before_split, class SplitFn>
     Bvh run(SplitFn&& split, bool parallel = false) {
         Bvh bvh;
@@ -396,26 +405,16 @@ public:
         bvh.unreferenced_count = bvh.prim_count - static_cast<std::uint32_t>(ids.size());
         bvh.config = config;
         const auto n = static_cast<std::uint32_t>(ids.size());
-        const auto root_box = [&] {
-            return Boxes == NodeBoxes::before_split ? range_bounds(0, n) : Bounds3f{};
-        };
-        if (parallel && n >= task_min) {
-            // Subtrees below task_min build densely into arrays of their own (in cache, no
-            // array of 2n - 1 slots to fill and compact), then go to their final places.
-            Part root;
-            build_part<Boxes>(root, split, 0, n, 0, root_box());
-            bvh.nodes.resize(root.size);
-            place(root, 0, 1, bvh.nodes);
-        } else if (n != 0) {
-            bvh.nodes.reserve(2 * n - 1);
-            bvh.nodes.emplace_back();
-            build_dense<Boxes>(bvh.nodes, split, 0, 0, n, 0, root_box());
+        if (n != 0) {
+            const Bounds3f root_box =
+                Boxes == NodeBoxes::before_split ? range_bounds(0, n) : Bounds3f{};
+            BvhTaskTree tree({task_min, parallel, 2}, n);
+            build<Boxes>(tree, tree.root(), 0, split, 0, n, 0, root_box);
+            tree.splice(bvh.nodes, nullptr, relink_bvh_node);
         }
         bvh.prim_ids = std::move(ids);  // the build is done with them
         return bvh;
     }
-
-    /// Ranges at least this large build their two children as parallel tasks.
 
 private:
     // The split of ids[b, e) at `depth`, or nullopt for a leaf.
@@ -471,88 +470,38 @@ private:
         return box;
     }
 
-    // Fills nodes[node] with the subtree of ids[b, e), appending its descendants to `nodes` in
+    // Fills out.nodes[node] with the subtree of ids[b, e), appending its descendants in
     // depth-first pair order (both children, then the left subtree, then the right); returns the
     // node's box.
     template <NodeBoxes Boxes, class SplitFn>
-    Bounds3f build_dense(BvhNodes& nodes,
-                         SplitFn& split,
-                         std::uint32_t node,
-                         std::uint32_t b,
-                         std::uint32_t e,
-                         std::uint32_t depth,
-                         const Bounds3f& given) {
+    Bounds3f build(BvhTaskTree& tree,
+                   BvhTaskTree::Chunk& out,
+                   std::uint32_t node,
+                   SplitFn& split,
+                   std::uint32_t b,
+                   std::uint32_t e,
+                   std::uint32_t depth,
+                   const Bounds3f& given) {
         const std::optional<Split> s = decide(split, b, e, depth, given);
         if (!s) {
-            return put_leaf<Boxes>(nodes[node], b, e, given);
+            return put_leaf<Boxes>(out.nodes[node], b, e, given);
         }
-        const auto left = static_cast<std::uint32_t>(nodes.size());
-        nodes.emplace_back();
-        nodes.emplace_back();
-        const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
-        const Bounds3f lb = build_dense<Boxes>(nodes, split, left, b, s->mid, depth + 1, lg);
-        const Bounds3f rb = build_dense<Boxes>(nodes, split, left + 1, s->mid, e, depth + 1, rg);
-        return put_inner<Boxes>(nodes[node], given, lb, rb, left, s->axis);
-    }
-
-    // A subtree of a parallel build as build_dense lays it out from local index 0 (its root at 0,
-    // the rest in depth-first pair order, child links local): a range below task_min (or a
-    // leaf) built serially, or an inner node alone (children pair at local 1) whose two children
-    // were built as parallel tasks into `kids`.
-    struct Part {
-        BvhNodes dense;
-        std::unique_ptr<Part> kids[2];
-        std::uint32_t size = 0;  // nodes in the subtree, its root included
-    };
-
-    // Builds the subtree of ids[b, e) into `part`, children of ranges of task_min or more as
-    // parallel tasks; returns its root's box.
-    template <NodeBoxes Boxes, class SplitFn>
-    Bounds3f build_part(Part& part,
-                        SplitFn& split,
-                        std::uint32_t b,
-                        std::uint32_t e,
-                        std::uint32_t depth,
-                        const Bounds3f& given) {
-        part.dense.emplace_back();
-        if (e - b < task_min) {
-            part.dense.reserve(2 * std::size_t{e - b} - 1);
-            const Bounds3f box = build_dense<Boxes>(part.dense, split, 0, b, e, depth, given);
-            part.size = static_cast<std::uint32_t>(part.dense.size());
-            return box;
-        }
-        part.size = 1;
-        const std::optional<Split> s = decide(split, b, e, depth, given);
-        if (!s) {
-            return put_leaf<Boxes>(part.dense[0], b, e, given);
-        }
+        const auto left = static_cast<std::uint32_t>(out.nodes.size());
+        out.nodes.emplace_back();
+        out.nodes.emplace_back();
         const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
         Bounds3f lb, rb;
-        part.kids[0] = std::make_unique<Part>();
-        part.kids[1] = std::make_unique<Part>();
-        tbb::parallel_invoke(
-            [&] { lb = build_part<Boxes>(*part.kids[0], split, b, s->mid, depth + 1, lg); },
-            [&] { rb = build_part<Boxes>(*part.kids[1], split, s->mid, e, depth + 1, rg); });
-        part.size += part.kids[0]->size + part.kids[1]->size;
-        return put_inner<Boxes>(part.dense[0], given, lb, rb, 1, s->axis);
-    }
-
-    // Writes part's root to out[at] and its descendants from out[below] on, as build_dense would
-    // have appended them (local index i >= 1 goes to below + i - 1): a node's children pair first,
-    // then the left child's descendants, then the right child's. Parts in parallel.
-    static void place(const Part& part, std::uint32_t at, std::uint32_t below, BvhNodes& out) {
-        for (std::size_t i = 0; i < part.dense.size(); ++i) {
-            BvhNode n = part.dense[i];
-            if (!n.is_leaf()) {
-                n.first += below - 1;
-            }
-            out[i == 0 ? at : below + i - 1] = n;
-        }
-        if (part.kids[0] != nullptr) {
-            const std::uint32_t right_below = below + 2 + part.kids[0]->size - 1;
-            tbb::parallel_invoke([&] { place(*part.kids[0], below, below + 2, out); },
-                                 [&] { place(*part.kids[1], below + 1, right_below, out); });
-        }
+        const std::uint32_t m = s->mid;
+        tree.fork(
+            out,
+            TaskBranch{left, m - b,
+                       [&, lg = lg](BvhTaskTree::Chunk& c, std::uint32_t at) {
+                           lb = build<Boxes>(tree, c, at, split, b, m, depth + 1, lg);
+                       }},
+            TaskBranch{left + 1, e - m, [&, rg = rg](BvhTaskTree::Chunk& c, std::uint32_t at) {
+                           rb = build<Boxes>(tree, c, at, split, m, e, depth + 1, rg);
+                       }});
+        return put_inner<Boxes>(out.nodes[node], given, lb, rb, left, s->axis);
     }
 };
 

@@ -4,17 +4,18 @@
 // spatial splits: planes at bins of equal width over the node box, a straddling reference cut in
 // two (each part clipped with the input's ClipFn when it has one, else its box cut at the plane).
 // A primitive may then sit in several leaves (at most once in any one). O(N log N); subtrees of
-// large ranges build as parallel TBB tasks into their own arrays, spliced into their parent's in
-// the serial order, and each node's allowance of extra references is split between its children
-// by their sizes, so the tree is the same for any thread count.
+// large ranges are tasks of the shared TaskTree (accel/task_tree.h), object and spatial bins and
+// their sweep are the binning module's (accel/bvh/binning.h), and each node's allowance of
+// extra references is split between its children by their sizes, so the tree is the same for any
+// thread count.
 
+#include "accel/bvh/binning.h"
 #include "accel/bvh/build_common.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
 
@@ -37,43 +38,18 @@ using Refs = LargeVector<Ref>;
 constexpr float overlap_alpha = 1e-5f;
 /// The references may number at most this many times the usable primitives.
 constexpr double ref_budget = 2.0;
-/// Ranges at least this large build their two children as parallel tasks.
-constexpr std::size_t parallel_min = 1u << 14;
+/// Subtrees of at least this many references are tasks of the TaskTree (more than the other
+/// builders' bvh_detail::task_min: a spatial node's binning costs more per reference).
+constexpr std::uint32_t sbvh_task_min = 1u << 14;
 
-/// A finished subtree: its root at nodes[0], inner links and leaf slots local to it.
-struct Subtree {
-    BvhNodes nodes;
-    std::vector<std::uint32_t> ids;
-};
+using Chunk = bvh_detail::BvhTaskTree::Chunk;
 
-/// The best split found so far of one kind: SAH cost (unnormalised), axis, and the object split's
-/// last left bin or the spatial split's plane.
-struct Candidate {
-    float cost = std::numeric_limits<float>::infinity();
-    std::uint32_t axis = 0;
-    std::uint32_t bin = 0;
+using Bins = binning::Bins<Bounds3f>;
+
+/// The best split found so far of one kind (binning::BinSplit) with the spatial split's plane.
+struct Candidate : binning::BinSplit<Bounds3f> {
     float plane = 0;
-    Bounds3f left, right;  ///< object split: its children's boxes
 };
-
-/// add(acc, lo, hi) over [0, n) into one accumulator (a copy of `empty`) per block of
-/// bvh_detail::reduce_block indices, in parallel for n >= bvh_detail::reduce_min, then merged
-/// in block order: the same result for any thread count.
-template <class T, class Add, class Merge>
-T reduce_refs(std::size_t n, const T& empty, const Add& add, const Merge& merge) {
-    if (n < bvh_detail::reduce_min) {
-        T acc = empty;
-        add(acc, 0, n);
-        return acc;
-    }
-    std::vector<T> part((n + bvh_detail::reduce_block - 1) / bvh_detail::reduce_block, empty);
-    bvh_detail::for_blocks(
-        n, [&](std::size_t k, std::size_t lo, std::size_t hi) { add(part[k], lo, hi); });
-    for (std::size_t k = 1; k < part.size(); ++k) {
-        merge(part[0], part[k]);
-    }
-    return std::move(part[0]);
-}
 
 class SbvhBuilder {
 public:
@@ -100,35 +76,36 @@ public:
         const auto budget =
             static_cast<std::size_t>((ref_budget - 1.0) * static_cast<double>(refs.size()));
         min_overlap_ = overlap_alpha * root.surface_area();
-        Subtree t;
-        t.nodes.emplace_back();
-        build(t, 0, std::move(refs), 0, root, budget);
-        bvh.nodes = std::move(t.nodes);
-        bvh.prim_ids = std::move(t.ids);
+        bvh_detail::BvhTaskTree tree({sbvh_task_min, true, 0}, refs.size());
+        build(tree, tree.root(), 0, std::move(refs), 0, root, budget);
+        tree.splice(bvh.nodes, &bvh.prim_ids, bvh_detail::relink_bvh_node);
         return bvh;
     }
 
 private:
+    /// A box that binning::reduce_blocks can merge.
+    struct Union : Bounds3f {
+        void merge(const Union& o) { extend(o); }
+    };
+
     static Bounds3f union_of(const Refs& refs) {
-        return reduce_refs(
-            refs.size(), Bounds3f{},
-            [&](Bounds3f& b, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    b.extend(refs[i].box);
-                }
-            },
-            [](Bounds3f& a, const Bounds3f& b) { a.extend(b); });
+        Union u;
+        binning::reduce_blocks(refs.size(), u, [&](Union& b, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                b.extend(refs[i].box);
+            }
+        });
+        return u;
     }
 
     static Bounds3f centroid_bounds(const Refs& refs) {
-        return reduce_refs(
-            refs.size(), Bounds3f{},
-            [&](Bounds3f& b, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    b.extend(refs[i].box.center());
-                }
-            },
-            [](Bounds3f& a, const Bounds3f& b) { a.extend(b); });
+        Union u;
+        binning::reduce_blocks(refs.size(), u, [&](Union& b, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                b.extend(refs[i].box.center());
+            }
+        });
+        return u;
     }
 
     float sah(std::uint32_t n) const { return bvh_detail::sah_count(cfg_, n); }
@@ -161,59 +138,11 @@ private:
         return h;
     }
 
-    /// Per-bin boxes and counts on all three axes (bins_ per axis, axis after axis): for object
-    /// bins `enter` counts the centres (and `leave` is unused); for spatial bins a reference's
-    /// parts extend the bins it spans, `enter` counts it in its first bin and `leave` in its last.
-    struct Bins {
-        std::vector<Bounds3f> box;
-        std::vector<std::uint32_t> enter, leave;
-
-        void merge(const Bins& o) {
-            for (std::size_t k = 0; k < box.size(); ++k) {
-                box[k].extend(o.box[k]);
-                enter[k] += o.enter[k];
-                leave[k] += o.leave[k];
-            }
-        }
-    };
-
-    Bins empty_bins() const {
-        const std::size_t n = 3 * std::size_t{bins_};
-        return {std::vector<Bounds3f>(n), std::vector<std::uint32_t>(n),
-                std::vector<std::uint32_t>(n)};
-    }
-
-    /// The planes between the bins of axis a of g by the SAH: a split after bin k puts the
-    /// references entering bins [0, k] left and those leaving bins (k, end) right; keeps the
-    /// cheapest in best (unnormalised cost, axis, bin, children's boxes).
-    void sweep(const Bins& g, std::uint32_t a, bool spatial, Candidate& best) const {
-        const Bounds3f* box = &g.box[a * bins_];
-        const std::uint32_t* enter = &g.enter[a * bins_];
-        const std::uint32_t* leave = spatial ? &g.leave[a * bins_] : enter;
-        std::vector<Bounds3f> right_box(bins_);
-        std::vector<std::uint32_t> right_count(bins_);
-        Bounds3f acc;
-        std::uint32_t cnt = 0;
-        for (std::uint32_t k = bins_ - 1; k > 0; --k) {
-            acc.extend(box[k]);
-            cnt += leave[k];
-            right_box[k - 1] = acc;
-            right_count[k - 1] = cnt;
-        }
-        acc = Bounds3f{};
-        cnt = 0;
-        for (std::uint32_t k = 0; k + 1 < bins_; ++k) {
-            acc.extend(box[k]);
-            cnt += enter[k];
-            if (cnt == 0 || right_count[k] == 0) {
-                continue;
-            }
-            const float cost =
-                acc.surface_area() * sah(cnt) + right_box[k].surface_area() * sah(right_count[k]);
-            if (cost < best.cost) {
-                best = {cost, a, k, 0.0f, acc, right_box[k]};
-            }
-        }
+    /// The SAH's best plane of axis a of g kept in best (binning::sweep with surface areas).
+    void sweep(const Bins& g, std::uint32_t a, Candidate& best) const {
+        binning::sweep(
+            g, a, [](const Bounds3f& b) { return b.surface_area(); },
+            [&](std::uint32_t n) { return sah(n); }, best);
     }
 
     /// The object bins' scale on each axis (0 where the centres coincide).
@@ -229,24 +158,22 @@ private:
     /// Binned SAH over the references' centres (Wald 2007), with the children's boxes.
     Candidate object_split(const Refs& refs, const Bounds3f& cb) const {
         const std::array<float, 3> scale = object_scale(cb);
-        const Bins g = reduce_refs(
-            refs.size(), empty_bins(),
-            [&](Bins& acc, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    const Vec3f c = refs[i].box.center();
-                    for (std::uint32_t a = 0; a < 3; ++a) {
-                        const std::uint32_t k =
-                            a * bins_ + bvh_detail::centroid_bin(c[a], cb.lo[a], scale[a], bins_);
-                        acc.box[k].extend(refs[i].box);
-                        ++acc.enter[k];
-                    }
+        Bins g(bins_, false);
+        binning::reduce_blocks(refs.size(), g, [&](Bins& acc, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                const Vec3f c = refs[i].box.center();
+                for (std::uint32_t a = 0; a < 3; ++a) {
+                    const std::uint32_t k =
+                        a * bins_ + bvh_detail::centroid_bin(c[a], cb.lo[a], scale[a], bins_);
+                    acc.box[k].extend(refs[i].box);
+                    ++acc.enter[k];
                 }
-            },
-            [](Bins& a, const Bins& b) { a.merge(b); });
+            }
+        });
         Candidate best;
         for (std::uint32_t a = 0; a < 3; ++a) {
             if (scale[a] != 0.0f) {
-                sweep(g, a, false, best);
+                sweep(g, a, best);
             }
         }
         return best;
@@ -308,22 +235,20 @@ private:
     /// Stich et al.'s spatial split: each reference's parts in the bins it spans (entering the
     /// first, leaving the last), the plane between bins with the lowest SAH.
     Candidate spatial_split(const Refs& refs, const Bounds3f& node) const {
-        const Bins g = reduce_refs(
-            refs.size(), empty_bins(),
-            [&](Bins& acc, std::size_t lo, std::size_t hi) {
-                for (std::size_t i = lo; i < hi; ++i) {
-                    for (std::uint32_t a = 0; a < 3; ++a) {
-                        if (spatial_axis(node, a)) {
-                            add_spatial(acc, refs[i], node, a);
-                        }
+        Bins g(bins_, true);
+        binning::reduce_blocks(refs.size(), g, [&](Bins& acc, std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+                for (std::uint32_t a = 0; a < 3; ++a) {
+                    if (spatial_axis(node, a)) {
+                        add_spatial(acc, refs[i], node, a);
                     }
                 }
-            },
-            [](Bins& a, const Bins& b) { a.merge(b); });
+            }
+        });
         Candidate best;
         for (std::uint32_t a = 0; a < 3; ++a) {
             if (spatial_axis(node, a)) {
-                sweep(g, a, true, best);
+                sweep(g, a, best);
             }
         }
         best.plane = plane(node, best.axis, best.bin + 1);
@@ -411,42 +336,12 @@ private:
         right.assign(mid, refs.end());
     }
 
-    static void make_leaf(Subtree& out, std::uint32_t node, const Refs& refs, const Bounds3f& box) {
+    static void make_leaf(Chunk& out, std::uint32_t node, const Refs& refs, const Bounds3f& box) {
         const auto first = static_cast<std::uint32_t>(out.ids.size());
         for (const Ref& r : refs) {
             out.ids.push_back(r.id);
         }
         out.nodes[node] = BvhNode::make_leaf(box, first, static_cast<std::uint32_t>(refs.size()));
-    }
-
-    /// Appends subtrees l and r to out as the children of out.nodes[node] (box, axis), in the
-    /// order a serial build gives: the pair, then l's descendants, then r's.
-    static void splice(Subtree& out,
-                       std::uint32_t node,
-                       const Bounds3f& box,
-                       std::uint32_t axis,
-                       const Subtree& l,
-                       const Subtree& r) {
-        const auto pair = static_cast<std::uint32_t>(out.nodes.size());
-        const auto l_nodes = static_cast<std::uint32_t>(l.nodes.size());
-        const auto l_ids = static_cast<std::uint32_t>(out.ids.size());
-        const auto r_ids = l_ids + static_cast<std::uint32_t>(l.ids.size());
-        out.nodes[node] = BvhNode::make_inner(box, pair, axis);
-        // Local node j >= 1 of l lands at pair + 1 + j, of r at pair + l_nodes + j.
-        const auto moved = [](BvhNode n, std::uint32_t node_shift, std::uint32_t id_shift) {
-            n.first += n.is_leaf() ? id_shift : node_shift;
-            return n;
-        };
-        out.nodes.push_back(moved(l.nodes[0], pair + 1, l_ids));
-        out.nodes.push_back(moved(r.nodes[0], pair + l_nodes, r_ids));
-        for (std::size_t j = 1; j < l.nodes.size(); ++j) {
-            out.nodes.push_back(moved(l.nodes[j], pair + 1, l_ids));
-        }
-        for (std::size_t j = 1; j < r.nodes.size(); ++j) {
-            out.nodes.push_back(moved(r.nodes[j], pair + l_nodes, r_ids));
-        }
-        out.ids.insert(out.ids.end(), l.ids.begin(), l.ids.end());
-        out.ids.insert(out.ids.end(), r.ids.begin(), r.ids.end());
     }
 
     /// A node's two children (refs split into left and right, the node's split axis), or false
@@ -511,7 +406,8 @@ private:
 
     // Fills out.nodes[node] with the subtree of refs (box: their union), appending its
     // descendants in depth-first pair order; it may add up to `budget` references.
-    void build(Subtree& out,
+    void build(bvh_detail::BvhTaskTree& tree,
+               Chunk& out,
                std::uint32_t node,
                Refs refs,
                std::uint32_t depth,
@@ -532,22 +428,20 @@ private:
             static_cast<double>(left.size() + right.size()));
         const std::size_t right_budget = budget - left_budget;
         const Bounds3f left_box = union_of(left), right_box = union_of(right);
-        if (n >= parallel_min) {
-            Subtree l, r;
-            l.nodes.emplace_back();
-            r.nodes.emplace_back();
-            tbb::parallel_invoke(
-                [&] { build(l, 0, std::move(left), depth + 1, left_box, left_budget); },
-                [&] { build(r, 0, std::move(right), depth + 1, right_box, right_budget); });
-            splice(out, node, box, axis, l, r);
-            return;
-        }
         const auto pair = static_cast<std::uint32_t>(out.nodes.size());
         out.nodes.emplace_back();
         out.nodes.emplace_back();
         out.nodes[node] = BvhNode::make_inner(box, pair, axis);
-        build(out, pair, std::move(left), depth + 1, left_box, left_budget);
-        build(out, pair + 1, std::move(right), depth + 1, right_box, right_budget);
+        const std::size_t nl = left.size(), nr = right.size();
+        tree.fork(
+            out,
+            TaskBranch{pair, nl,
+                       [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(left), depth + 1, left_box, left_budget);
+                       }},
+            TaskBranch{pair + 1, nr, [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(right), depth + 1, right_box, right_budget);
+                       }});
     }
 
     const BuildInput& in_;

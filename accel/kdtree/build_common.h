@@ -1,8 +1,11 @@
 #pragma once
 // Shared by the kd-tree builders: the SAH cost model (Wald & Havran 2006, section 4.1, with the
-// empty-space bonus), the resolved depth limit, and node emission in pre-order.
+// empty-space bonus), the resolved depth limit, and node emission in pre-order through the shared
+// TaskTree (accel/task_tree.h).
 
 #include "accel/kdtree/kdtree.h"
+#include "accel/task_tree.h"
+#include "base/large_pages.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,20 +65,15 @@ struct CostModel {
 };
 
 /// What both builders keep of their input and Config: the input, the cost model, the leaf size
-/// and depth limits, whether straddling primitives are clipped (perfect splits, given a clip) and
-/// whether children are built as parallel tasks.
+/// and depth limits and whether straddling primitives are clipped (perfect splits, given a clip).
 class BuilderSettings {
 public:
-    BuilderSettings(const BuildInput& in,
-                    const KdTree::Config& cfg,
-                    std::uint32_t max_depth,
-                    bool parallel)
+    BuilderSettings(const BuildInput& in, const KdTree::Config& cfg, std::uint32_t max_depth)
         : in_(in)
         , cost_{cfg.traversal_cost, cfg.intersection_cost, cfg.empty_bonus}
         , min_leaf_(cfg.min_leaf_size)
         , max_depth_(max_depth)
-        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip))
-        , parallel_(parallel) {}
+        , perfect_(cfg.perfect_splits && static_cast<bool>(in.clip)) {}
 
 protected:
     const BuildInput& in_;
@@ -83,7 +81,6 @@ protected:
     std::size_t min_leaf_;
     std::uint32_t max_depth_;
     bool perfect_;
-    bool parallel_;
 };
 
 /// A kd-tree with the bookkeeping fields set from the input, and no nodes yet; primitives whose
@@ -110,34 +107,49 @@ inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {
     return t;
 }
 
-/// Appends a leaf holding `ids` (sorted for a canonical order); returns its index.
-inline std::uint32_t emit_leaf(KdTree& t, std::span<std::uint32_t> ids) {
+/// Subtrees of at least this many primitives are tasks of the kd-tree builders' TaskTree.
+inline constexpr std::uint32_t task_min = 4096;
+
+/// The task tree of the kd-tree builders: nodes in pre-order, leaf lists per chunk.
+using KdTaskTree = TaskTree<LargeVector<KdNode>, LargeVector<std::uint32_t>>;
+
+/// Writes the leaf holding `ids` (sorted for a canonical order) to out.nodes[slot].
+inline void put_leaf(KdTaskTree::Chunk& out, std::uint32_t slot, std::span<std::uint32_t> ids) {
+    if (ids.size() > KdNode::max_index) {
+        throw std::length_error("kd-tree: too many primitives in one leaf");
+    }
     std::sort(ids.begin(), ids.end());
-    const auto index = static_cast<std::uint32_t>(t.nodes.size());
-    if (t.prim_ids.size() + ids.size() > 0xFFFFFFFFu || ids.size() > KdNode::max_index) {
-        throw std::length_error("kd-tree: too many primitive references");
-    }
-    t.nodes.push_back(KdNode::leaf(static_cast<std::uint32_t>(t.prim_ids.size()),
-                                   static_cast<std::uint32_t>(ids.size())));
-    t.prim_ids.insert(t.prim_ids.end(), ids.begin(), ids.end());
-    return index;
+    out.nodes[slot] = KdNode::leaf(static_cast<std::uint32_t>(out.ids.size()),
+                                   static_cast<std::uint32_t>(ids.size()));
+    out.ids.insert(out.ids.end(), ids.begin(), ids.end());
 }
 
-/// Appends an inner node whose above child is not known yet; returns its index.
-inline std::uint32_t emit_inner(KdTree& t, std::uint32_t axis, float split) {
-    const auto index = static_cast<std::uint32_t>(t.nodes.size());
-    t.nodes.push_back(KdNode::inner(axis, split, 0));
-    return index;
+/// Builds both children of the inner node at out.nodes[slot] (split `pos` on `axis`) through
+/// tree.fork, each root added where its nodes start (pre-order), and links the node above.
+template <class L, class R>
+void put_inner(KdTaskTree& tree,
+               KdTaskTree::Chunk& out,
+               std::uint32_t slot,
+               std::uint32_t axis,
+               float pos,
+               TaskBranch<L> below,
+               TaskBranch<R> above) {
+    const std::uint32_t above_slot = tree.fork(out, below, above).second;
+    out.nodes[slot] = KdNode::inner(axis, pos, above_slot);
 }
 
-/// Sets the above child of inner node `index` to the next node to be emitted.
-inline void link_above(KdTree& t, std::uint32_t index) {
-    const auto above = static_cast<std::uint32_t>(t.nodes.size());
-    if (above > KdNode::max_index) {
-        throw std::length_error("kd-tree: too many nodes for 30-bit indices");
+/// Lays the task tree's chunks out as t's nodes and leaf lists (TaskTree::splice).
+inline void splice(KdTaskTree& tree, KdTree& t) {
+    tree.splice(t.nodes, &t.prim_ids, [](KdNode n, const auto& node_of, const auto& id_of) {
+        return n.is_leaf() ? KdNode::leaf(
+                                 static_cast<std::uint32_t>(id_of(n.prim_offset(), n.prim_count())),
+                                 n.prim_count())
+                           : KdNode::inner(n.axis(), n.split(),
+                                           static_cast<std::uint32_t>(node_of(n.above_child())));
+    });
+    if (t.nodes.size() - 1 > KdNode::max_index || t.prim_ids.size() > 0xFFFFFFFFu) {
+        throw std::length_error("kd-tree: too many nodes or primitive references");
     }
-    const KdNode n = t.nodes[index];
-    t.nodes[index] = KdNode::inner(n.axis(), n.split(), above);
 }
 
 }  // namespace rtlab::kd_detail

@@ -4,15 +4,14 @@
 // Straddling primitives go to both sides with clipped boxes (BuildInput::clip when given and
 // Config::perfect_splits is on).
 // Cost: O(N log N) for balanced scenes (each level touches each reference once). Subtrees build
-// in parallel with Config::threads; the tree is the same for any thread count.
+// in parallel with Config::threads (the shared TaskTree); the tree is the same for any thread
+// count.
 
 #include "accel/kdtree/build_common.h"
 #include "accel/kdtree/kdtree.h"
 #include "base/thread_arena.h"
 
 #include <cstdint>
-#include <stdexcept>
-#include <tbb/parallel_invoke.h>
 #include <utility>
 #include <vector>
 
@@ -26,12 +25,20 @@ struct Ref {
     Bounds3f box;
 };
 
+using Tree = kd_detail::KdTaskTree;
+using Chunk = Tree::Chunk;
+
 class MedianBuilder : kd_detail::BuilderSettings {
 public:
     using BuilderSettings::BuilderSettings;
 
-    /// Builds the subtree of the node `box` holding `refs` into `out` (nodes and lists only).
-    void recurse(std::vector<Ref> refs, const Bounds3f& box, std::uint32_t depth, KdTree& out) {
+    /// Builds the subtree of the node `box` holding `refs` into out.nodes[slot] and below.
+    void recurse(kd_detail::KdTaskTree& tree,
+                 Chunk& out,
+                 std::uint32_t slot,
+                 std::vector<Ref> refs,
+                 const Bounds3f& box,
+                 std::uint32_t depth) {
         const std::size_t n = refs.size();
         const auto axis = static_cast<std::uint32_t>(box.largest_axis());
         const float mid = box.center()[axis];
@@ -49,7 +56,7 @@ public:
             for (const Ref& r : refs) {
                 ids.push_back(r.id);
             }
-            kd_detail::emit_leaf(out, ids);
+            kd_detail::put_leaf(out, slot, ids);
             return;
         }
         const Bounds3f left_box = kd_detail::half_box(box, axis, mid, 0);
@@ -76,45 +83,19 @@ public:
         }
         refs.clear();
         refs.shrink_to_fit();
-        const std::uint32_t index = kd_detail::emit_inner(out, axis, mid);
-        if (parallel_ && n >= parallel_min) {
-            // Both children as tasks into their own arrays, appended in pre-order: the same
-            // tree as the serial recursion.
-            KdTree lt, rt;
-            tbb::parallel_invoke([&] { recurse(std::move(left), left_box, depth + 1, lt); },
-                                 [&] { recurse(std::move(right), right_box, depth + 1, rt); });
-            append(out, lt);
-            kd_detail::link_above(out, index);
-            append(out, rt);
-            return;
-        }
-        recurse(std::move(left), left_box, depth + 1, out);
-        kd_detail::link_above(out, index);
-        recurse(std::move(right), right_box, depth + 1, out);
+        const std::size_t left_n = left.size(), right_n = right.size();
+        kd_detail::put_inner(
+            tree, out, slot, axis, mid,
+            TaskBranch{Tree::append, left_n,
+                       [&](Chunk& c, std::uint32_t at) {
+                           recurse(tree, c, at, std::move(left), left_box, depth + 1);
+                       }},
+            TaskBranch{Tree::append, right_n, [&](Chunk& c, std::uint32_t at) {
+                           recurse(tree, c, at, std::move(right), right_box, depth + 1);
+                       }});
     }
-
-    /// Nodes with at least this many references build their children as parallel tasks.
-    static constexpr std::size_t parallel_min = 4096;
 
 private:
-    /// Appends a subtree built on its own (indices from 0) to t's nodes and lists.
-    static void append(KdTree& t, const KdTree& sub) {
-        const std::size_t node_shift = t.nodes.size(), list_shift = t.prim_ids.size();
-        if (node_shift + sub.nodes.size() > KdNode::max_index ||
-            list_shift + sub.prim_ids.size() > 0xFFFFFFFFu) {
-            throw std::length_error("kd-tree: too many nodes or primitive references");
-        }
-        for (const KdNode& n : sub.nodes) {
-            t.nodes.push_back(
-                n.is_leaf()
-                    ? KdNode::leaf(n.prim_offset() + static_cast<std::uint32_t>(list_shift),
-                                   n.prim_count())
-                    : KdNode::inner(n.axis(), n.split(),
-                                    n.above_child() + static_cast<std::uint32_t>(node_shift)));
-        }
-        t.prim_ids.insert(t.prim_ids.end(), sub.prim_ids.begin(), sub.prim_ids.end());
-    }
-
     /// The part of primitive id inside box (empty when none).
     Bounds3f clip(std::uint32_t id, const Bounds3f& box) const {
         if (perfect_) {
@@ -136,8 +117,10 @@ KdTree build_kdtree_median(const BuildInput& in, const KdTree::Config& cfg) {
                 refs.push_back({id, in.bounds[id]});
             }
         }
-        MedianBuilder builder(in, cfg, tree.max_depth, cfg.threads != 1);
-        builder.recurse(std::move(refs), tree.scene_bounds, 0, tree);
+        MedianBuilder builder(in, cfg, tree.max_depth);
+        Tree tasks({kd_detail::task_min, cfg.threads != 1, 0}, refs.size());
+        builder.recurse(tasks, tasks.root(), 0, std::move(refs), tree.scene_bounds, 0);
+        kd_detail::splice(tasks, tree);
         return tree;
     });
 }

@@ -7,8 +7,8 @@
 // with perfect splits (Config::perfect_splits and a BuildInput::clip) each part is the clipped
 // triangle's box on the side, whose events are sorted and merged back in. Planes on the node's
 // boundary are not candidates (they would repeat the node).
-// Parallel: subtrees of large nodes are TBB tasks, each writing its own chunk of nodes; the chunks
-// are stitched in pre-order, so the tree is the same for any thread count.
+// Parallel: subtrees of large nodes are tasks of the shared TaskTree (accel/task_tree.h), so the
+// tree is the same for any thread count.
 
 #include "accel/kdtree/build_common.h"
 #include "accel/kdtree/events.h"
@@ -19,7 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <stdexcept>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_invoke.h>
 #include <vector>
@@ -72,30 +72,22 @@ struct Plane {
     bool planar_left = true;  ///< primitives lying in the plane go to the left (below) child
 };
 
-/// Nodes and leaf lists of one subtree in pre-order, indices relative to the chunk; a leaf with
-/// count KdNode::max_index stands for the chunk subs[payload] (built by another task).
-struct Chunk {
-    LargeVector<KdNode> nodes;
-    LargeVector<std::uint32_t> prim_ids;
-    std::vector<std::unique_ptr<Chunk>> subs;
-};
-
-/// Nodes at least this large build their children as parallel tasks.
-constexpr std::size_t parallel_min = 4096;
+using Tree = kd_detail::KdTaskTree;
+using Chunk = Tree::Chunk;
 
 class SahBuilder : kd_detail::BuilderSettings {
 public:
     SahBuilder(const BuildInput& in, const KdTree::Config& cfg, std::uint32_t max_depth)
-        : BuilderSettings(in,
-                          cfg,
-                          max_depth,
-                          tbb::this_task_arena::max_concurrency() > 1 &&
-                              tbb::global_control::active_value(
-                                  tbb::global_control::max_allowed_parallelism) > 1) {}
+        : BuilderSettings(in, cfg, max_depth) {}
 
-    /// Builds the subtree of the node `box` whose primitives' events are `ev` into `out`;
-    /// `side` has one scratch byte per primitive id, owned by the calling task.
-    void build(EventLists ev, const Bounds3f& box, std::uint32_t depth, Chunk& out, Side* side) {
+    /// Builds the subtree of the node `box` whose primitives' events are `ev` into
+    /// out.nodes[slot] and below.
+    void build(Tree& tree,
+               Chunk& out,
+               std::uint32_t slot,
+               EventLists ev,
+               const Bounds3f& box,
+               std::uint32_t depth) {
         std::vector<std::uint32_t> ids;
         for (const Event e : ev[0]) {
             if (event_type(e) != event_end) {
@@ -105,31 +97,31 @@ public:
         const std::size_t n = ids.size();
         const Plane best = n <= min_leaf_ || depth >= max_depth_ ? Plane{} : find_plane(ev, box, n);
         if (!(best.cost < cost_.leaf_cost(n))) {
-            emit_leaf(out, ids);
+            kd_detail::put_leaf(out, slot, ids);
             return;
         }
-        classify(ev[best.axis], ids, best, side);
+        // One side byte per primitive id for this thread: classify and split_lists run without
+        // a task in between.
+        std::unique_ptr<Side[]>& side = sides_.local();
+        if (side == nullptr) {
+            side = std::make_unique_for_overwrite<Side[]>(in_.bounds.size());
+        }
+        classify(ev[best.axis], ids, best, side.get());
         EventLists left, right;
-        split_lists(ev, best, ids, box, side, left, right);
-
-        const auto index = static_cast<std::uint32_t>(out.nodes.size());
-        out.nodes.push_back(KdNode::inner(best.axis, best.pos, 0));
+        split_lists(ev, best, ids, box, side.get(), left, right);
         const Bounds3f left_box = kd_detail::half_box(box, best.axis, best.pos, 0);
         const Bounds3f right_box = kd_detail::half_box(box, best.axis, best.pos, 1);
-        if (parallel_ && n >= parallel_min) {
-            auto lc = std::make_unique<Chunk>(), rc = std::make_unique<Chunk>();
-            auto right_side = std::make_unique_for_overwrite<Side[]>(in_.bounds.size());
-            tbb::parallel_invoke(
-                [&] { build(std::move(left), left_box, depth + 1, *lc, side); },
-                [&] { build(std::move(right), right_box, depth + 1, *rc, right_side.get()); });
-            add_sub(out, std::move(lc));
-            out.nodes[index] = KdNode::inner(best.axis, best.pos, link(out));
-            add_sub(out, std::move(rc));
-            return;
-        }
-        build(std::move(left), left_box, depth + 1, out, side);
-        out.nodes[index] = KdNode::inner(best.axis, best.pos, link(out));
-        build(std::move(right), right_box, depth + 1, out, side);
+        // Both children are tasks when this node has task_min primitives or more (counting
+        // theirs would take another pass over the ids).
+        kd_detail::put_inner(
+            tree, out, slot, best.axis, best.pos,
+            TaskBranch{Tree::append, n,
+                       [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(left), left_box, depth + 1);
+                       }},
+            TaskBranch{Tree::append, n, [&](Chunk& c, std::uint32_t at) {
+                           build(tree, c, at, std::move(right), right_box, depth + 1);
+                       }});
     }
 
 private:
@@ -281,53 +273,8 @@ private:
         }
     }
 
-    static void emit_leaf(Chunk& out, std::vector<std::uint32_t>& ids) {
-        if (ids.size() >= KdNode::max_index) {
-            throw std::length_error("kd-tree: too many primitives in one leaf");
-        }
-        std::sort(ids.begin(), ids.end());
-        out.nodes.push_back(KdNode::leaf(static_cast<std::uint32_t>(out.prim_ids.size()),
-                                         static_cast<std::uint32_t>(ids.size())));
-        out.prim_ids.insert(out.prim_ids.end(), ids.begin(), ids.end());
-    }
-
-    static void add_sub(Chunk& out, std::unique_ptr<Chunk> sub) {
-        out.nodes.push_back(
-            KdNode::leaf(static_cast<std::uint32_t>(out.subs.size()), KdNode::max_index));
-        out.subs.push_back(std::move(sub));
-    }
-
-    /// The index the next node of `out` will get, as an above-child link.
-    static std::uint32_t link(const Chunk& out) {
-        if (out.nodes.size() > KdNode::max_index) {
-            throw std::length_error("kd-tree: too many nodes for 30-bit indices");
-        }
-        return static_cast<std::uint32_t>(out.nodes.size());
-    }
+    tbb::enumerable_thread_specific<std::unique_ptr<Side[]>> sides_;
 };
-
-/// Appends the subtree rooted at c.nodes[local] to the tree in pre-order.
-void stitch(const Chunk& c, std::uint32_t local, KdTree& t) {
-    const KdNode n = c.nodes[local];
-    if (n.is_leaf() && n.prim_count() == KdNode::max_index) {
-        stitch(*c.subs[n.prim_offset()], 0, t);
-        return;
-    }
-    if (n.is_leaf()) {
-        if (t.prim_ids.size() + n.prim_count() > 0xFFFFFFFFu) {
-            throw std::length_error("kd-tree: too many primitive references");
-        }
-        t.nodes.push_back(
-            KdNode::leaf(static_cast<std::uint32_t>(t.prim_ids.size()), n.prim_count()));
-        const auto first = c.prim_ids.begin() + n.prim_offset();
-        t.prim_ids.insert(t.prim_ids.end(), first, first + n.prim_count());
-        return;
-    }
-    const std::uint32_t index = kd_detail::emit_inner(t, n.axis(), n.split());
-    stitch(c, local + 1, t);
-    kd_detail::link_above(t, index);
-    stitch(c, n.above_child(), t);
-}
 
 KdTree build(const BuildInput& in, const KdTree::Config& cfg) {
     KdTree tree = kd_detail::start_tree(in, cfg);
@@ -344,16 +291,12 @@ KdTree build(const BuildInput& in, const KdTree::Config& cfg) {
                          [&] { kd_detail::sort_events(ev[1]); },
                          [&] { kd_detail::sort_events(ev[2]); });
     SahBuilder builder(in, cfg, tree.max_depth);
-    Chunk root;
-    auto side = std::make_unique_for_overwrite<Side[]>(in.bounds.size());
-    builder.build(std::move(ev), tree.scene_bounds, 0, root, side.get());
-    if (root.subs.empty()) {
-        tree.nodes = std::move(root.nodes);
-        tree.prim_ids = std::move(root.prim_ids);
-    } else {
-        tree.nodes.reserve(root.nodes.size());
-        stitch(root, 0, tree);
-    }
+    const bool parallel =
+        tbb::this_task_arena::max_concurrency() > 1 &&
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+    Tree tasks({kd_detail::task_min, parallel, 0}, in.bounds.size());
+    builder.build(tasks, tasks.root(), 0, std::move(ev), tree.scene_bounds, 0);
+    kd_detail::splice(tasks, tree);
     return tree;
 }
 
