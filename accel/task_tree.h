@@ -118,6 +118,12 @@ public:
         return {l_slot, r_slot};
     }
 
+    /// True when a child of `size` primitives becomes a task of its own (a parallel build and
+    /// size >= task_min). Below that a builder may recurse directly, as fork would inline it.
+    bool is_task(std::size_t size) const {
+        return settings_.parallel && size >= settings_.task_min;
+    }
+
     /// Lays every chunk out into `nodes` (and `ids` when not null) by the settings' layout: each
     /// node and id where the serial build writes it, or chunk after chunk. relink(node, node_of,
     /// id_of) returns the node with each link j mapped to node_of(j) and a leaf's local list offset
@@ -155,10 +161,6 @@ private:
         std::size_t root, start, id_start;
         bool interleave;  // TaskLayout::serial: the subs' nodes and ids amid the chunk's
     };
-
-    bool is_task(std::size_t size) const {
-        return settings_.parallel && size >= settings_.task_min;
-    }
 
     void start(Chunk& c, std::size_t prims) const {
         if (settings_.nodes_per_prim != 0) {

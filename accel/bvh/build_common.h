@@ -492,6 +492,11 @@ private:
         const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
         Bounds3f lb, rb;
         const std::uint32_t m = s->mid;
+        if (!tree.is_task(e - b)) {  // neither child is a task: fork would build both inline
+            lb = build<Boxes>(tree, out, left, split, b, m, depth + 1, lg);
+            rb = build<Boxes>(tree, out, left + 1, split, m, e, depth + 1, rg);
+            return put_inner<Boxes>(out.nodes[node], given, lb, rb, left, s->axis);
+        }
         tree.fork(
             out,
             TaskBranch{left, m - b,
