@@ -76,7 +76,8 @@ PairBvh PairBvh::convert(Bvh b, ChildOrder order) {
         [&](const bvh_detail::ConvertItem& it, LargeVector<PairNode>& out, const auto& push) {
             expand(b, it, out, push, order);
         },
-        [](PairNode n, const auto& map) {
+        [](const PairNode& in, const auto& map) {
+            PairNode n = in;
             for (int c = 0; c < 2; ++c) {
                 if (n.count_of(c) == 0) {
                     n.child[c] = map(n.child[c]);

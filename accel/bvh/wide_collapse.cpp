@@ -266,7 +266,8 @@ WideBvh<N> collapse_bvh(Bvh bvh, ChildOrder order, WideCollapse rule) {
         [&](const bvh_detail::ConvertItem& it, LargeVector<WideNode<N>>& out, const auto& push) {
             expand<N>(bvh, it, kids_of(it.source), out, push);
         },
-        [](WideNode<N> n, const auto& map) {
+        [](const WideNode<N>& in, const auto& map) {
+            WideNode<N> n = in;
             for (unsigned i = 0; i < N; ++i) {
                 if (n.occupied(i) && n.count[i] == 0) {
                     n.child[i] = map(n.child[i]);
