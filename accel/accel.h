@@ -86,12 +86,11 @@ inline constexpr std::uint32_t padding_slot = 0xffffffffu;
 
 /// Optional: a structure whose leaves are ranges of `prim_ids` slots can hand a caller whole
 /// leaves, so the caller may store its primitive data in slot order (no id indirection in the hot
-/// loop) and test a leaf at once. `soa_leaves` says whether callers should. prim_ids may hold
-/// padding_slot entries between leaves.
+/// loop) and test a leaf at once; whether it does is the caller's choice (a tracer's option).
+/// prim_ids may hold padding_slot entries between leaves.
 template <class A>
 concept LeafRangeAccel = requires(const A& a, Rayf& ray, const Rayf& cray) {
     { a.prim_ids[0] } -> std::convertible_to<std::uint32_t>;
-    { a.soa_leaves } -> std::convertible_to<bool>;
     { a.intersect_leaves(ray, detail::NullLeafRange{}) } -> std::same_as<bool>;
     { a.occluded_leaves(cray, detail::NullLeafRange{}) } -> std::same_as<bool>;
 };

@@ -64,6 +64,11 @@ struct AccelEntry {
 /// Every registered structure/builder, in a fixed order (brute force first).
 std::span<const AccelEntry> accel_registry();
 
+/// Whether a tracer keeps its primitives in the structure's leaf-slot order and tests whole leaves
+/// (the spec's `leaves=soa`, the default; also for rows without the key): a tracer's choice,
+/// which the structures do not store.
+bool slot_ordered_leaves(const AccelSpec& s);
+
 /// Parameter variants that reports run beside the rows' defaults as layouts of their own (the
 /// targets benchmark suite, the stability suite's leak cases): specs, not registry rows.
 std::span<const std::string_view> accel_variants();

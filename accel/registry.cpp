@@ -128,7 +128,8 @@ const Choice<bool> leaves = choice<bool>("leaves",
                                          {{"soa", true}, {"ids", false}},
                                          "soa: tracers test whole leaves with SIMD kernels on "
                                          "slot-ordered data; ids: one primitive id at a time");
-const Field<KdTree::Config> kd_leaves = field<&KdTree::Config::soa_leaves>(leaves);
+// A kd-tree is the same for both: only a tracer reads it (slot_ordered_leaves).
+const ParamSpec kd_leaves = tracer_only(leaves.param);
 const Field<GridConfig> density =
     field<&GridConfig::density>(real_param("density",
                                            static_cast<double>(grid_default.density),
@@ -163,7 +164,7 @@ Bvh::Config bvh_config(const AccelSpec& s) {
 
 KdTree::Config kd_config(const AccelSpec& s) {
     return config_from<KdTree::Config>(s, {&kd_ct, &kd_ci, &empty_bonus, &max_depth, &min_leaf,
-                                           &perfect, &kd_threads, &kd_traversal, &kd_leaves});
+                                           &perfect, &kd_threads, &kd_traversal});
 }
 
 GridConfig grid_config(const AccelSpec& s) {
@@ -352,11 +353,8 @@ PairBvh pair_row(Bvh source, const AccelSpec& s, const BuildInput&) {
 /// `threads`.
 template <auto Convert>
 AnyAccel layout_row(const BuildInput& in, const AccelSpec& s) {
-    return with_threads(threads_of(s), [&]() -> AnyAccel {
-        auto layout = Convert(aligned_source(in, s), s, in);
-        layout.soa_leaves = leaves.of(s);
-        return layout;
-    });
+    return with_threads(threads_of(s),
+                        [&]() -> AnyAccel { return Convert(aligned_source(in, s), s, in); });
 }
 
 // A layout row's source-tree parameters take effect only with the `from` builders that read them,
@@ -391,7 +389,7 @@ const ParamSpec pair_ct = with_default(from_ct, 16);
 // Rows that take the same parameters: the wide layouts, the kd-trees.
 const std::vector<ParamSpec> kd_params{kd_ct.param,     kd_ci.param,        empty_bonus.param,
                                        max_depth.param, min_leaf.param,     perfect.param,
-                                       threads,         kd_traversal.param, kd_leaves.param};
+                                       threads,         kd_traversal.param, kd_leaves};
 const std::vector<ParamSpec> wide_params{
     from.param,   leaves.param, leaf_align, child_order.param, collapse.param, diagonal_slabs.param,
     sah_max_leaf, from_bins,    from_ct,    from_ci,           soa_block,      from_morton_bits,
@@ -453,6 +451,10 @@ std::span<const AccelEntry> accel_registry() {
         return r;
     }();
     return rows;
+}
+
+bool slot_ordered_leaves(const AccelSpec& s) {
+    return leaves.values.at(static_cast<std::size_t>(s.value_or(leaves.param.key, 0)));
 }
 
 std::span<const std::string_view> accel_variants() {

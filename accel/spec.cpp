@@ -108,6 +108,11 @@ ParamSpec only_with(ParamSpec p, std::string_view key, std::vector<std::string_v
     return p;
 }
 
+ParamSpec tracer_only(ParamSpec p) {
+    p.tracer_only = true;
+    return p;
+}
+
 ParamSpec build_only(ParamSpec p) {
     p.build_only = true;
     return p;

@@ -36,6 +36,8 @@ struct ParamSpec {
     std::vector<std::string_view> needs_values;
     /// True when the value changes only how the structure is built (threads), never what.
     bool build_only = false;
+    /// True when the value changes only how a tracer uses the structure, never the structure.
+    bool tracer_only = false;
 
     /// The value written as `text` (a choice: its index); throws std::invalid_argument with one
     /// line naming `spec` and the key when text is malformed, not finite, not whole for an
@@ -69,6 +71,9 @@ ParamSpec only_with(ParamSpec p, std::string_view key, std::vector<std::string_v
 
 /// p marked as changing only how a structure is built, never what is built.
 ParamSpec build_only(ParamSpec p);
+
+/// p marked as changing only how a tracer uses a structure, never the structure.
+ParamSpec tracer_only(ParamSpec p);
 
 struct AccelEntry;
 

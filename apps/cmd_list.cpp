@@ -49,6 +49,7 @@ nlohmann::json list_json() {
                 q["needs"] = {{"key", p.needs}, {"values", p.needs_values}};
             }
             q["build_only"] = p.build_only;
+            q["tracer_only"] = p.tracer_only;
             row["params"].push_back(q);
         }
         j["structures"].push_back(row);
@@ -71,6 +72,9 @@ void list_text() {
             }
             if (p.build_only) {
                 help += " [build only: the same structure for any value]";
+            }
+            if (p.tracer_only) {
+                help += " [tracer only: the same structure for any value]";
             }
             std::cout << fmt::format("    {:<12} {:<8} default {:<6} {:<22} {}\n", p.key,
                                      kind_name(p.kind), p.format(p.default_value), p.range_text(),

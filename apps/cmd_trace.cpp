@@ -35,6 +35,7 @@ struct TraceArgs {
     bool warmup = true;
     bool stats = false;
     bool robust = false;
+    bool leaf_time = false;
 };
 
 int run_trace(const TraceArgs& a) {
@@ -59,6 +60,7 @@ int run_trace(const TraceArgs& a) {
     opt.warmup = a.warmup ? 1 : 0;
     opt.stats = a.stats;
     opt.epo = a.stats;
+    opt.leaf_time = a.leaf_time;
     std::vector<Hit> hits;
     const TraceMeasurement m = measure_trace(tracer, rays, opt, &hits);
 
@@ -92,7 +94,8 @@ Command add_trace(CLI::App& root) {
         "trace",
         "Trace a ray file through a scene with one structure per primitive set; prints one JSON "
         "object (accel method rays hits build_ms trace_ms mrays_per_s accel_bytes nodes leaves "
-        "max_depth sah_cost [nodes_per_ray prims_per_ray cost_model measured_cost [epo]])");
+        "max_depth sah_cost [traverse_ms leaf_share] [nodes_per_ray prims_per_ray cost_model "
+        "measured_cost [epo]])");
     sub->add_option("scene,--scene", a->scene,
                     "Scene JSON or mesh file (.obj .ply .off .stl), positional or --scene")
         ->required();
@@ -128,6 +131,11 @@ Command add_trace(CLI::App& root) {
                   "(measured_cost) and, for BVHs over triangles, the end-point overlap (epo); see "
                   "docs/architecture.md");
     sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
+    sub->add_flag("--leaf-time", a->leaf_time,
+                  "Also time the traversal alone (--repeat runs, each ray's window ending at its "
+                  "hit, leaves offered but not tested): traverse_ms, and leaf_share = 1 - "
+                  "traverse_ms / trace_ms, about the share of leaf work")
+        ->excludes("--any-hit");
     return {sub, [a] { return run_trace(*a); }};
 }
 

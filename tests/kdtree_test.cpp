@@ -169,7 +169,6 @@ TEST_CASE("kd-tree leaf ranges offer the slots of the per-id walk, in order", "[
     CAPTURE(walk, seed);
     const test::Soup soup = test::random_soup(test::SoupKind::triangles, seed, 400);
     const KdTree tree = build_kd("kdtree:sah" + walk, make_input(soup, true));
-    REQUIRE(tree.soa_leaves);
     std::vector<Rayf> rays = test::random_rays(soup, seed, 200);
     const std::vector<Rayf> on_planes = split_plane_rays(tree, seed, 60);
     rays.insert(rays.end(), on_planes.begin(), on_planes.end());

@@ -181,7 +181,7 @@ TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by sl
                             ray.dir.y, ray.dir.z, ray.tmin, ray.tmax);
                     const ScopedSimdCap cap(l);
                     Rayf got_ray = ray;
-                    const auto got = sphere_soa_closest(soa, first, count, got_ray, rd);
+                    const auto got = kernel_closest<M>(soa, first, count, got_ray, rd);
                     REQUIRE(got.has_value() == want.closest.has_value());
                     REQUIRE(same_bits(got_ray.tmax, want.tmax));
                     if (got) {
@@ -190,7 +190,7 @@ TEST_CASE("sphere leaf kernels of every SIMD level equal SphereStable slot by sl
                         REQUIRE(same_bits(got->hit.u, want.closest->hit.u));
                         REQUIRE(same_bits(got->hit.v, want.closest->hit.v));
                     }
-                    REQUIRE(sphere_soa_any(soa, first, count, ray, rd) == want.any);
+                    REQUIRE(kernel_any<M>(soa, first, count, ray, rd) == want.any);
                 }
             }
         }
@@ -209,18 +209,18 @@ void check_inlined(const WideBvh<N>& bvh,
     const SphereSoA soa = make_sphere_soa(prims, bvh.prim_ids);
     test::KeepAllBlock<SlotHit> closest{rays};
     test::KeepAllBlock<std::uint32_t> any{rays};
-    wide_leaf_trace_block<false, IsRobust, false>(bvh, soa, closest);
-    wide_leaf_trace_block<true, IsRobust, false>(bvh, soa, any);
+    wide_leaf_trace_block<false, IsRobust, M>(bvh, soa, closest);
+    wide_leaf_trace_block<true, IsRobust, M>(bvh, soa, any);
     for (std::size_t k = 0; k < rays.size(); ++k) {
         const Rayf& ray = rays[k];
         const SphereRay<float> rd = M::precompute(ray);
         test::check_same_as_leaf_callbacks<IsRobust>(
             bvh, closest, any, k,
             [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
-                return sphere_soa_closest(soa, first, count, r, rd);
+                return kernel_closest<M>(soa, first, count, r, rd);
             },
             [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
-                return sphere_soa_any(soa, first, count, r, rd);
+                return kernel_any<M>(soa, first, count, r, rd);
             });
         const std::optional<SlotHit>& got = closest.found[k];
         const std::optional<std::uint32_t>& got_any = any.found[k];

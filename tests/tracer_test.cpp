@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -311,6 +312,42 @@ TEST_CASE("structures large enough to prefetch children trace like brute force",
             }
         }
     }
+}
+
+TEST_CASE("every method's leaf kernel on the wide layouts answers as its scalar per-id path",
+          "[trace][methods][wide]") {
+    // `leaves=soa` tests whole leaves with the method's leaf kernel (trace/leaf_kernel.h: the
+    // hand-written ones, else the generic one over SlotPrims), `leaves=ids` one primitive id at a time
+    // with the scalar method: the same hits and blockers, t, u and v bit for bit.
+    const auto same_bits = [](float a, float b) {
+        return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+    };
+    for_each_type<MethodFamilyTable>([&]<class Family>() {
+        using First = std::tuple_element_t<0, typename Family::ShapeLists>;
+        for_each_type<First>([&]<class M>() {
+            for (const std::uint64_t seed : {1u, 2u, 3u}) {
+                const Scene s = family_scene(Family::name, seed);
+                const std::vector<Rayf> rays = family_rays(s, seed);
+                for (const std::string width : {"bvh8", "bvh16"}) {
+                    CAPTURE(Family::name, M::name, seed, width);
+                    const bool isect = IntersectionMethod<M>;
+                    const Answers kernel =
+                        trace(s, rays, width, Family::name, M::name, isect, false);
+                    const Answers ids =
+                        trace(s, rays, width + ",leaves=ids", Family::name, M::name, isect, false);
+                    REQUIRE(kernel.blockers == ids.blockers);
+                    for (std::size_t i = 0; i < kernel.hits.size(); ++i) {
+                        const Hit& k = kernel.hits[i];
+                        const Hit& d = ids.hits[i];
+                        CAPTURE(i);
+                        REQUIRE(k.prim == d.prim);
+                        REQUIRE(
+                            (same_bits(k.t, d.t) && same_bits(k.u, d.u) && same_bits(k.v, d.v)));
+                    }
+                }
+            }
+        });
+    });
 }
 
 TEST_CASE("the --method name table is generated from the method lists", "[trace][methods]") {

@@ -109,13 +109,8 @@ void check_kernel(const std::vector<Prepared>& prims, const std::vector<Rayf>& r
                     Rayf got_ray = ray;
                     std::optional<SlotHit> got;
                     std::optional<std::uint32_t> got_any;
-                    if constexpr (is_wt) {
-                        got = soa_closest_watertight(soa, first, count, got_ray, rd);
-                        got_any = soa_any_watertight(soa, first, count, ray, rd);
-                    } else {
-                        got = soa_closest_mt(soa, first, count, got_ray);
-                        got_any = soa_any_mt(soa, first, count, ray);
-                    }
+                    got = kernel_closest<M>(soa, first, count, got_ray, rd);
+                    got_any = kernel_any<M>(soa, first, count, ray, rd);
                     REQUIRE(got.has_value() == want.has_value());
                     REQUIRE(got_any == want_any);
                     REQUIRE(same_bits(got_ray.tmax, want_ray.tmax));
@@ -149,24 +144,18 @@ void check_inlined(const WideBvh<N>& bvh, const test::Soup& soup, const std::vec
                                               is_wt ? SoaLayout::vertices : SoaLayout::edges);
     test::KeepAllBlock<SlotHit> closest{rays};
     test::KeepAllBlock<std::uint32_t> any{rays};
-    wide_leaf_trace_block<false, IsRobust, is_wt>(bvh, soa, closest);
-    wide_leaf_trace_block<true, IsRobust, is_wt>(bvh, soa, any);
+    wide_leaf_trace_block<false, IsRobust, M>(bvh, soa, closest);
+    wide_leaf_trace_block<true, IsRobust, M>(bvh, soa, any);
     for (std::size_t k = 0; k < rays.size(); ++k) {
         const Rayf& ray = rays[k];
         const RayDataOf<M> rd = precompute_ray<M>(ray);
-        const WatertightRay<float>* wr = nullptr;
-        if constexpr (is_wt) {
-            wr = &rd;
-        }
         test::check_same_as_leaf_callbacks<IsRobust>(
             bvh, closest, any, k,
             [&](std::uint32_t first, std::uint32_t count, Rayf& r) {
-                return is_wt ? soa_closest_watertight(soa, first, count, r, *wr)
-                             : soa_closest_mt(soa, first, count, r);
+                return kernel_closest<M>(soa, first, count, r, rd);
             },
             [&](std::uint32_t first, std::uint32_t count, const Rayf& r) {
-                return is_wt ? soa_any_watertight(soa, first, count, r, *wr)
-                             : soa_any_mt(soa, first, count, r);
+                return kernel_any<M>(soa, first, count, r, rd);
             });
     }
 }

@@ -70,63 +70,14 @@ struct CountSink {
     }
 };
 
-// True when set s of method M on structure A is traced leaf by leaf with M's SIMD leaf kernel.
+// True when set s of method M on structure A is traced leaf by leaf with M's leaf kernel
+// (trace/leaf_kernel.h) over its slot-ordered leaf data.
 template <class M, class A>
 bool uses_leaf_kernel(const PrimSet<M>& s, const A&) {
-    if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
+    if constexpr (LeafRangeAccel<A>) {
         return s.soa.size() != 0;
     } else {
         return false;
-    }
-}
-
-// True when set s is traced leaf by leaf over its slot-ordered primitives (slot_prims).
-template <class M, class A>
-bool uses_slot_prims(const PrimSet<M>& s, const A&) {
-    if constexpr (!has_leaf_kernel<M> && LeafRangeAccel<A>) {
-        return !s.slot_prims.empty();
-    } else {
-        return false;
-    }
-}
-
-// True when M is the watertight method (leaf kernels on the vertices layout).
-template <class M>
-inline constexpr bool is_watertight = std::is_same_v<M, Watertight<float>>;
-
-// True when M's leaf kernel is the sphere one (SphereStable<float>).
-template <class M>
-inline constexpr bool is_sphere_soa = std::is_same_v<LeafSoa<M>, SphereSoA>;
-
-// The leaf kernel of M (MollerTrumbore, Watertight or SphereStable) on slots [first,
-// first + count).
-template <class M>
-std::optional<SlotHit> leaf_closest(const LeafSoa<M>& q,
-                                    std::uint32_t first,
-                                    std::uint32_t count,
-                                    Rayf& ray,
-                                    const RayDataOf<M>& rd) {
-    if constexpr (is_sphere_soa<M>) {
-        return sphere_soa_closest(q, first, count, ray, rd);
-    } else if constexpr (is_watertight<M>) {
-        return soa_closest_watertight(q, first, count, ray, rd);
-    } else {
-        return soa_closest_mt(q, first, count, ray);
-    }
-}
-
-template <class M>
-std::optional<std::uint32_t> leaf_any(const LeafSoa<M>& q,
-                                      std::uint32_t first,
-                                      std::uint32_t count,
-                                      const Rayf& ray,
-                                      const RayDataOf<M>& rd) {
-    if constexpr (is_sphere_soa<M>) {
-        return sphere_soa_any(q, first, count, ray, rd);
-    } else if constexpr (is_watertight<M>) {
-        return soa_any_watertight(q, first, count, ray, rd);
-    } else {
-        return soa_any_mt(q, first, count, ray);
     }
 }
 
@@ -175,14 +126,15 @@ void wide_leaf_block(const Query& query,
                      std::size_t begin,
                      std::size_t end,
                      Local& local) {
-    QueryBlock<Query, LeafSoa<M>, Local> block{query, s.soa, local, begin, end};
-    wide_leaf_trace_block<Query::is_any_hit, IsRobust, is_watertight<M>>(bvh, s.soa, block);
+    QueryBlock<Query, LeafData<M>, Local> block{query, s.soa, local, begin, end};
+    wide_leaf_trace_block<Query::is_any_hit, IsRobust, M>(bvh, s.soa, block);
 }
 
 // Closest hit: each set starts from the nearest hit of the sets before it. The method's per-ray
 // set-up runs once per ray and set, before traversal. Sets with slot-ordered leaf data test whole
-// leaves (ids looked up only for the reported hit). On wide BVHs with a leaf kernel trace_batch
-// runs whole ranges through wide_leaf_block instead of trace(), with take() and put().
+// leaves with their method's leaf kernel (ids looked up only for the reported hit). On wide BVHs
+// trace_batch runs such sets' ranges through wide_leaf_block instead of trace(), with take() and
+// put().
 struct ClosestQuery {
     std::span<const Rayf> rays;
     std::span<Hit> hits;
@@ -208,11 +160,11 @@ struct ClosestQuery {
         Rayf ray;
         take(i, ray);
         const RayDataOf<M> rd = precompute_ray<M>(ray);
-        if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
+        if constexpr (LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
                 SlotHit best{};
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
-                    const auto h = leaf_closest<M>(s.soa, first, count, rr, rd);
+                    const auto h = kernel_closest<M>(s.soa, first, count, rr, rd);
                     if (h) {
                         best = *h;
                     }
@@ -227,27 +179,6 @@ struct ClosestQuery {
         }
         std::uint32_t best = invalid_id;
         PrimHit<float> best_hit{};
-        if constexpr (LeafRangeAccel<A>) {
-            if (uses_slot_prims(s, acc)) {
-                const auto leaf = [&](std::uint32_t first, std::uint32_t count, Rayf& rr) {
-                    bool found = false;
-                    for (std::uint32_t k = first; k < first + count; ++k) {
-                        if (const auto h = intersect_with<M>(s.slot_prims[k], rr, rd)) {
-                            rr.tmax = h->t;
-                            best = k;
-                            best_hit = *h;
-                            found = true;
-                        }
-                    }
-                    return found;
-                };
-                if (acc.template intersect_leaves<IsRobust>(ray, callback<Stats, LeavesFn>(leaf),
-                                                            stats)) {
-                    hits[i] = {best_hit.t, best_hit.u, best_hit.v, s.slot_ids[best]};
-                }
-                return;
-            }
-        }
         const auto leaf = [&, rd](std::uint32_t id, Rayf& rr) {
             const auto h = intersect_with<M>(s.prims[id], rr, rd);
             if (!h) {
@@ -293,11 +224,11 @@ struct AnyHitQuery {
             return;
         }
         const RayDataOf<M> rd = precompute_ray<M>(rays[i]);
-        if constexpr (has_leaf_kernel<M> && LeafRangeAccel<A>) {
+        if constexpr (LeafRangeAccel<A>) {
             if (uses_leaf_kernel(s, acc)) {
                 std::uint32_t slot = 0;
                 const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
-                    const auto h = leaf_any<M>(s.soa, first, count, rr, rd);
+                    const auto h = kernel_any<M>(s.soa, first, count, rr, rd);
                     slot = h.value_or(0);
                     return h.has_value();
                 };
@@ -309,24 +240,6 @@ struct AnyHitQuery {
             }
         }
         std::uint32_t found = invalid_id;
-        if constexpr (LeafRangeAccel<A>) {
-            if (uses_slot_prims(s, acc)) {
-                const auto leaf = [&](std::uint32_t first, std::uint32_t count, const Rayf& rr) {
-                    for (std::uint32_t k = first; k < first + count; ++k) {
-                        if (occluded_with<M>(s.slot_prims[k], rr, rd)) {
-                            found = k;
-                            return true;
-                        }
-                    }
-                    return false;
-                };
-                if (acc.template occluded_leaves<IsRobust>(
-                        rays[i], callback<Stats, AnyLeavesFn>(leaf), stats)) {
-                    blocker[i] = s.slot_ids[found];
-                }
-                return;
-            }
-        }
         const auto leaf = [&, rd](std::uint32_t id, const Rayf& rr) {
             if (!occluded_with<M>(s.prims[id], rr, rd)) {
                 return false;
@@ -340,10 +253,12 @@ struct AnyHitQuery {
     }
 };
 
-// Rays [begin, end) of set s: in one block through the wide BVH traversal with the leaf kernel
-// inlined where that applies, else ray by ray. Counted passes take the ray-by-ray path with the
-// same leaf kernels as callbacks (the same visits and counts, tests/*_soa_test.cpp): timing never
-// counts, and the inlined kernels, once per SIMD level, are the bulk of a batch unit's build.
+// Rays [begin, end) of set s: in one block through the wide BVH traversal with a hand-written
+// SIMD leaf kernel inlined where that applies, else ray by ray (the generic kernel is inlined
+// into the ray-by-ray traversal, compiled once per method, not once per method and SIMD level).
+// Counted passes take the ray-by-ray path with the same leaf kernels as callbacks (the same
+// visits and counts, tests/*_soa_test.cpp): timing never counts, and the inlined kernels, once
+// per SIMD level, are the bulk of a batch unit's build.
 template <bool IsRobust, class Query, class M, class A, class Local>
 void trace_range(const Query& query,
                  const PrimSet<M>& s,
@@ -351,7 +266,7 @@ void trace_range(const Query& query,
                  std::size_t begin,
                  std::size_t end,
                  Local& local) {
-    if constexpr (has_leaf_kernel<M> && is_wide_bvh<A> && std::is_same_v<Local, NoSink::Local>) {
+    if constexpr (LeafKernel<M>::simd && is_wide_bvh<A> && std::is_same_v<Local, NoSink::Local>) {
         if (uses_leaf_kernel(s, acc)) {
             wide_leaf_block<IsRobust>(query, s, acc, begin, end, local);
             return;

@@ -18,6 +18,24 @@ double median_of(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+namespace {
+
+// Milliseconds of each of max(repeat, 1) runs of f.
+template <class F>
+std::vector<double> timed_runs(int repeat, F&& f) {
+    std::vector<double> runs;
+    for (int k = 0; k < std::max(repeat, 1); ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        runs.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
+    }
+    return runs;
+}
+
+}  // namespace
+
 TraceMeasurement measure_trace(const SceneTracer& tracer,
                                std::span<const Rayf> rays,
                                const MeasureOptions& opt,
@@ -32,17 +50,13 @@ TraceMeasurement measure_trace(const SceneTracer& tracer,
             tracer.intersect(rays, hits);
         }
     }
-    for (int k = 0; k < std::max(opt.repeat, 1); ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
+    m.trace_ms_runs = timed_runs(opt.repeat, [&] {
         if (opt.any_hit) {
             tracer.occluded(rays, blockers);
         } else {
             tracer.intersect(rays, hits);
         }
-        m.trace_ms_runs.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
-    }
+    });
     if (opt.any_hit) {
         for (std::size_t i = 0; i < rays.size(); ++i) {
             hits[i] = blockers[i] == invalid_id ? Hit{} : Hit{0.0f, 0.0f, 0.0f, blockers[i]};
@@ -64,6 +78,9 @@ TraceMeasurement measure_trace(const SceneTracer& tracer,
     m.bytes_per_prim = tracer.primitive_count() > 0
                            ? static_cast<double>(m.accel_bytes) / tracer.primitive_count()
                            : 0.0;
+    if (opt.leaf_time && !opt.any_hit) {
+        m.traverse_ms = median_of(timed_runs(opt.repeat, [&] { tracer.traverse(rays, hits); }));
+    }
     if (opt.stats) {
         // A separate pass, so counting never perturbs the timing above.
         TraversalStats st;

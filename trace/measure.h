@@ -21,6 +21,8 @@ struct MeasureOptions {
     int warmup = 0;        ///< untimed runs first (thread pool start-up, caches, page faults)
     bool stats = false;    ///< add a counting pass (nodes and primitive tests per ray)
     bool epo = false;      ///< with stats: also the end-point overlap of BVHs over triangles
+    /// Closest hit only: also time the traversal alone (SceneTracer::traverse), repeat runs.
+    bool leaf_time = false;
 };
 
 /// The figures of one measured batch.
@@ -45,6 +47,9 @@ struct TraceMeasurement {
     double cost_model = 0;
     double measured_cost = 0;
     double epo = -1;  ///< with epo: end-point overlap of the triangle set's BVH (-1: none)
+    /// With leaf_time: median time of the traversal alone, windows ending at the hits found
+    /// (-1: not measured); trace_ms less this is about the leaf work.
+    double traverse_ms = -1;
 };
 
 /// Median of v (the mean of the middle two for an even count); 0 for an empty v.

@@ -24,6 +24,10 @@ inline void write_measurement(nlohmann::json& j, const TraceMeasurement& m) {
               {"leaves", m.leaves},
               {"max_depth", m.max_depth},
               {"sah_cost", m.sah_cost}});
+    if (m.traverse_ms >= 0) {
+        j.update({{"traverse_ms", m.traverse_ms},
+                  {"leaf_share", m.trace_ms > 0 ? 1.0 - m.traverse_ms / m.trace_ms : 0.0}});
+    }
     if (m.has_stats) {
         j.update({{"nodes_per_ray", m.nodes_per_ray},
                   {"prims_per_ray", m.prims_per_ray},

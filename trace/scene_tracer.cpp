@@ -3,9 +3,11 @@
 #include "trace/scene_tracer.h"
 
 #include "trace/batch.h"
+#include "trace/batch_loop.h"
 #include "trace/clip.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <stdexcept>
 #include <type_traits>
@@ -18,6 +20,7 @@ template <class M>
 AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
                     std::vector<std::uint32_t> ids,
                     const AccelSpec& accel,
+                    bool leaf_slots,
                     const ClipFn& clip,
                     const ExtentFn& extent,
                     double& build_ms) {
@@ -36,22 +39,8 @@ AnyPrimSet make_set(const std::vector<typename M::Shape>& shapes,
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     visit_accel(set.accel, [&](const auto& a) {
         if constexpr (LeafRangeAccel<std::decay_t<decltype(a)>>) {
-            if (!a.soa_leaves) {
-                return;
-            }
-            if constexpr (soa_layout_of<M>.has_value()) {
-                set.soa = make_triangle_soa(set.prims, a.prim_ids, *soa_layout_of<M>, set.ids);
-            } else if constexpr (std::is_same_v<LeafSoa<M>, SphereSoA>) {
-                set.soa = make_sphere_soa(set.prims, a.prim_ids, set.ids);
-            } else {
-                set.slot_prims.reserve(a.prim_ids.size());
-                set.slot_ids.reserve(a.prim_ids.size());
-                for (const std::uint32_t id : a.prim_ids) {
-                    // A padding slot (in no leaf, never tested) repeats the first primitive.
-                    const std::uint32_t i = id == padding_slot ? a.prim_ids.front() : id;
-                    set.slot_prims.push_back(set.prims[i]);
-                    set.slot_ids.push_back(set.ids[i]);
-                }
+            if (leaf_slots) {
+                set.soa = LeafKernel<M>::make(set.prims, a.prim_ids, set.ids);
             }
         }
     });
@@ -83,6 +72,7 @@ const MethodFamily& family(std::string_view name) {
 struct SetAdder {
     const TraceSetup& setup;
     const AccelSpec& accel;
+    bool leaf_slots;  ///< keep slot-ordered leaf data where the structure offers whole leaves
     std::vector<AnyPrimSet>& sets;
     std::vector<std::string>& labels;
     double& build_ms;
@@ -100,7 +90,8 @@ struct SetAdder {
         using Family = FamilyOf<Shape>;
         const std::string_view m = pick_method(family(Family::name), setup.methods);
         const bool found = with_method_named<Shape>(m, [&]<class M>() {
-            sets.push_back(make_set<M>(shapes, std::move(ids), accel, clip, extent, build_ms));
+            sets.push_back(
+                make_set<M>(shapes, std::move(ids), accel, leaf_slots, clip, extent, build_ms));
         });
         if (!found) {
             throw std::invalid_argument("internal: method " + std::string(m) + " not in its set");
@@ -146,6 +137,18 @@ ExtentFn extent_for(const std::vector<S>& shapes) {
     }
 }
 
+/// Walks acc for ray r offering its leaves to a callback that tests nothing (whole leaves where
+/// the structure offers them, as the leaf kernels take them).
+template <bool IsRobust, class A>
+bool walk_only(const A& acc, Rayf& r) {
+    if constexpr (LeafRangeAccel<A>) {
+        return acc.template intersect_leaves<IsRobust>(
+            r, [](std::uint32_t, std::uint32_t, Rayf&) { return false; });
+    } else {
+        return acc.template intersect<IsRobust>(r, [](std::uint32_t, Rayf&) { return false; });
+    }
+}
+
 }  // namespace
 
 SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup)
@@ -184,7 +187,8 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup)
     if constexpr (requires { std::get<ShapeBucket<Trianglef>>(buckets.all); }) {
         triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
     }
-    SetAdder add{setup, accel_spec_, sets_, set_methods_, build_ms_};
+    SetAdder add{setup, accel_spec_, slot_ordered_leaves(accel_spec_), sets_, set_methods_,
+                 build_ms_};
     std::apply(
         [&](auto&... b) {
             (add(b.shapes, std::move(b.ids), clip_for(b.shapes), extent_for(b.shapes)), ...);
@@ -220,14 +224,8 @@ std::size_t SceneTracer::leaf_bytes() const {
     for (const AnyPrimSet& s : sets_) {
         total += std::visit(
             [](const auto& set) -> std::size_t {
-                if constexpr (requires { set.soa.data; }) {
-                    if (set.soa.size() > 0) {
-                        return set.soa.data.size() * sizeof(set.soa.data[0]);
-                    }
-                }
-                if (!set.slot_prims.empty()) {
-                    return set.slot_prims.size() * sizeof(set.slot_prims[0]) +
-                           set.slot_ids.size() * sizeof(std::uint32_t);
+                if (set.soa.size() > 0) {
+                    return set.soa.bytes();
                 }
                 return set.prims.size() * sizeof(set.prims[0]) +
                        set.ids.size() * sizeof(std::uint32_t);
@@ -259,6 +257,29 @@ void SceneTracer::intersect_counted(std::span<const Rayf> rays,
     }
     std::fill(hits.begin(), hits.end(), Hit{});
     batch::closest_per_ray(sets_, robust_, rays, hits, per_ray);
+}
+
+void SceneTracer::traverse(std::span<const Rayf> rays, std::span<const Hit> hits) const {
+    if (hits.size() != rays.size()) {
+        throw std::invalid_argument("traverse: hits and rays differ in size");
+    }
+    std::atomic<std::size_t> reported{0};  // keeps the walks (their leaves never report a hit)
+    for (const AnyPrimSet& s : sets_) {
+        const AnyAccel& a =
+            std::visit([](const auto& set) -> const AnyAccel& { return set.accel; }, s);
+        visit_accel(a, [&](const auto& acc) {
+            const auto body = [&](std::size_t begin, std::size_t end) {
+                std::size_t n = 0;
+                for (std::size_t i = begin; i != end; ++i) {
+                    Rayf r = rays[i];
+                    r.tmax = std::min(r.tmax, hits[i].t);
+                    n += robust_ ? walk_only<true>(acc, r) : walk_only<false>(acc, r);
+                }
+                reported += n;
+            };
+            batch::parallel_blocks(rays.size(), body);
+        });
+    }
 }
 
 void SceneTracer::occluded(std::span<const Rayf> rays,

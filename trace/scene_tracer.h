@@ -48,6 +48,11 @@ public:
                            std::span<Hit> hits,
                            std::span<TraversalStats> per_ray) const;
 
+    /// The traversal alone of intersect(): every set's structure walked for ray i with its window
+    /// ending at hits[i].t (the closest hit intersect() found), leaves offered but not tested; a
+    /// trace's time less this one is about its leaf work (`rtlab trace --leaf-time`).
+    void traverse(std::span<const Rayf> rays, std::span<const Hit> hits) const;
+
     /// Any hit for every ray: blocker[i] is the global id of a primitive that blocks rays[i]'s
     /// window (whichever traversal met first), or invalid_id when nothing does.
     void occluded(std::span<const Rayf> rays,
@@ -63,8 +68,8 @@ public:
     /// Info of every set's structure (set order as set_methods()).
     std::vector<AccelInfo> infos() const;
     /// Bytes of the primitive data traversal reads beside the structures, over all sets: a set's
-    /// SIMD leaf blocks (padding slots included) when it has them, else its primitives copied
-    /// into slot order with their ids, else its prepared primitives with the global id map.
+    /// slot-ordered leaf data (trace/leaf_kernel.h; padding slots included) when it has them, else
+    /// its prepared primitives with the global id map.
     std::size_t leaf_bytes() const;
     /// The one cost model's expected counts (accel/cost_model.h) of every set's structure, and
     /// with_epo the end-point overlap of a BVH over the triangle set (-1 for other sets and

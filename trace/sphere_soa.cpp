@@ -1,10 +1,8 @@
-// SphereSoA: building in slot order, and the leaf kernels of trace/sphere_soa_kernels.h for
-// callers outside SIMD-level code, the level chosen per call.
+// SphereSoA: building in slot order.
 
 #include "trace/sphere_soa.h"
 
 #include "accel/accel.h"
-#include "trace/sphere_soa_kernels.h"
 
 namespace rtlab {
 
@@ -30,38 +28,6 @@ SphereSoA make_sphere_soa(std::span<const PreparedSphere<float>> prims,
         g[SphereSoA::id_row * SphereSoA::group + lane] = std::bit_cast<float>(id);
     }
     return q;
-}
-
-std::optional<SlotHit> sphere_soa_closest(const SphereSoA& soa,
-                                          std::uint32_t first,
-                                          std::uint32_t count,
-                                          Rayf& ray,
-                                          const SphereRay<float>& rd) {
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::sphere_leaf_closest(soa, first, count, ray, rd);
-    case SimdLevel::avx2:
-        return simd_avx2::sphere_leaf_closest(soa, first, count, ray, rd);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::sphere_leaf_closest(soa, first, count, ray, rd);
-}
-
-std::optional<std::uint32_t> sphere_soa_any(const SphereSoA& soa,
-                                            std::uint32_t first,
-                                            std::uint32_t count,
-                                            const Rayf& ray,
-                                            const SphereRay<float>& rd) {
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::sphere_leaf_any(soa, first, count, ray, rd);
-    case SimdLevel::avx2:
-        return simd_avx2::sphere_leaf_any(soa, first, count, ray, rd);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::sphere_leaf_any(soa, first, count, ray, rd);
 }
 
 }  // namespace rtlab

@@ -1,11 +1,11 @@
 #pragma once
 // Spheres structure-of-arrays in a structure's leaf-slot order, for testing a whole leaf at once
-// with SphereStable<float> (intersect/sphere/stable.h) on 4 (SSE2) or 8 (AVX2, AVX-512) lanes, the
-// level chosen per call by base/simd.h. Each kernel gives exactly the answers of the scalar method
-// applied to the slots one after another: lanes compute the roots with the same IEEE operations
-// in the same order (no FMA), and candidate lanes are then accepted in slot order against the
-// shrinking window with the comparisons of detail::pick_root. As the scalar method, the hits carry
-// u = v = 0.
+// with SphereStable<float> (intersect/sphere/stable.h) on 4 (SSE2) or 8 (AVX2, AVX-512) lanes
+// (trace/sphere_soa_kernels.inc, an entry of trace/leaf_kernel.h's table). Each kernel gives
+// exactly the answers of the scalar method applied to the slots one after another: lanes compute
+// the roots with the same IEEE operations in the same order (no FMA), and candidate lanes are then
+// accepted in slot order against the shrinking window with the comparisons of detail::pick_root. As
+// the scalar method, the hits carry u = v = 0.
 
 #include "base/large_pages.h"
 #include "intersect/ray.h"
@@ -14,7 +14,6 @@
 
 #include <bit>
 #include <cstdint>
-#include <optional>
 #include <span>
 
 namespace rtlab {
@@ -34,6 +33,8 @@ struct SphereSoA {
 
     /// Number of slots (without the padding).
     std::uint32_t size() const { return slots; }
+    /// Bytes of the groups, padding included.
+    std::size_t bytes() const { return data.size() * sizeof(float); }
     /// Row r (0..4) of group g: four floats.
     const float* row(std::uint32_t g, unsigned r) const {
         return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
@@ -51,21 +52,5 @@ struct SphereSoA {
 SphereSoA make_sphere_soa(std::span<const PreparedSphere<float>> prims,
                           std::span<const std::uint32_t> slot_ids,
                           std::span<const std::uint32_t> ids = {});
-
-/// Closest hit among slots [first, first + count), exactly as SphereStable<float>::intersect with
-/// the ray's set-up rd on each slot in order, each hit shrinking ray.tmax (which this does too);
-/// nullopt if none.
-std::optional<SlotHit> sphere_soa_closest(const SphereSoA& soa,
-                                          std::uint32_t first,
-                                          std::uint32_t count,
-                                          Rayf& ray,
-                                          const SphereRay<float>& rd);
-
-/// The first slot of [first, first + count) SphereStable<float>::occluded reports, or nullopt.
-std::optional<std::uint32_t> sphere_soa_any(const SphereSoA& soa,
-                                            std::uint32_t first,
-                                            std::uint32_t count,
-                                            const Rayf& ray,
-                                            const SphereRay<float>& rd);
 
 }  // namespace rtlab

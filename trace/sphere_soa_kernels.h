@@ -1,7 +1,7 @@
 #pragma once
 // The SphereSoA leaf kernels (trace/sphere_soa_kernels.inc) compiled once per SIMD level of
 // base/simd.h: namespaces simd_sse2, simd_avx2 and simd_avx512, each in its own target region with
-// that level's lanes (base/simd_lanes.h). trace/sphere_soa.cpp picks one per call by
+// that level's lanes (base/simd_lanes.h). trace/leaf_kernel.h picks one per call by
 // simd_level(); trace/wide_soa.h inlines them into the wide BVH traversal of the same level.
 
 #include "base/simd_lanes.h"

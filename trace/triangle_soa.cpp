@@ -1,53 +1,12 @@
-// TriangleSoA: building in slot order, and the leaf kernels of trace/triangle_soa_kernels.h for
-// callers outside SIMD-level code, the level chosen per call.
+// TriangleSoA: building in slot order.
 
 #include "trace/triangle_soa.h"
 
 #include "accel/accel.h"
-#include "trace/triangle_soa_kernels.h"
 
 #include <cassert>
 
 namespace rtlab {
-
-namespace {
-
-/// The leaf kernel of the current SIMD level, for calls from outside the level's code.
-template <bool IsWatertight>
-std::optional<SlotHit> closest(const TriangleSoA& q,
-                               std::uint32_t first,
-                               std::uint32_t count,
-                               Rayf& ray,
-                               const WatertightRay<float>* wr) {
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::soa_leaf_closest<IsWatertight>(q, first, count, ray, wr);
-    case SimdLevel::avx2:
-        return simd_avx2::soa_leaf_closest<IsWatertight>(q, first, count, ray, wr);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::soa_leaf_closest<IsWatertight>(q, first, count, ray, wr);
-}
-
-template <bool IsWatertight>
-std::optional<std::uint32_t> any(const TriangleSoA& q,
-                                 std::uint32_t first,
-                                 std::uint32_t count,
-                                 const Rayf& ray,
-                                 const WatertightRay<float>* wr) {
-    switch (simd_level()) {
-    case SimdLevel::avx512:
-        return simd_avx512::soa_leaf_any<IsWatertight>(q, first, count, ray, wr);
-    case SimdLevel::avx2:
-        return simd_avx2::soa_leaf_any<IsWatertight>(q, first, count, ray, wr);
-    case SimdLevel::sse2:
-        break;
-    }
-    return simd_sse2::soa_leaf_any<IsWatertight>(q, first, count, ray, wr);
-}
-
-}  // namespace
 
 VertexTriangleMethod<float>::Prepared TriangleSoA::vertices(std::uint32_t s) const {
     assert(layout == SoaLayout::vertices);
@@ -84,36 +43,6 @@ TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepa
         g[9 * TriangleSoA::group + lane] = std::bit_cast<float>(id);
     }
     return q;
-}
-
-std::optional<SlotHit> soa_closest_mt(const TriangleSoA& soa,
-                                      std::uint32_t first,
-                                      std::uint32_t count,
-                                      Rayf& ray) {
-    return closest<false>(soa, first, count, ray, nullptr);
-}
-
-std::optional<std::uint32_t> soa_any_mt(const TriangleSoA& soa,
-                                        std::uint32_t first,
-                                        std::uint32_t count,
-                                        const Rayf& ray) {
-    return any<false>(soa, first, count, ray, nullptr);
-}
-
-std::optional<SlotHit> soa_closest_watertight(const TriangleSoA& soa,
-                                              std::uint32_t first,
-                                              std::uint32_t count,
-                                              Rayf& ray,
-                                              const WatertightRay<float>& wr) {
-    return closest<true>(soa, first, count, ray, &wr);
-}
-
-std::optional<std::uint32_t> soa_any_watertight(const TriangleSoA& soa,
-                                                std::uint32_t first,
-                                                std::uint32_t count,
-                                                const Rayf& ray,
-                                                const WatertightRay<float>& wr) {
-    return any<true>(soa, first, count, ray, &wr);
 }
 
 }  // namespace rtlab

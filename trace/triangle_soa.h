@@ -1,11 +1,11 @@
 #pragma once
 // Triangles structure-of-arrays in a structure's leaf-slot order, for testing a whole leaf at
-// once: Möller–Trumbore and watertight (Woop et al. 2013) on 4 (SSE2) or 8 (AVX2, AVX-512) lanes,
-// the level chosen per call by base/simd.h. Each kernel gives exactly the answers of its scalar
-// method applied to the slots one after another: lanes compute the same IEEE operations (no FMA),
-// candidate lanes are then accepted in slot order against the shrinking window with the scalar
-// comparisons, and watertight lanes with an exact zero edge function take the scalar method's
-// double fallback.
+// once: Möller–Trumbore and watertight (Woop et al. 2013) on 4 (SSE2) or 8 (AVX2, AVX-512) lanes
+// (trace/triangle_soa_kernels.inc, the entries of trace/leaf_kernel.h's table). Each kernel gives
+// exactly the answers of its scalar method applied to the slots one after another: lanes compute
+// the same IEEE operations (no FMA), candidate lanes are then accepted in slot order against the
+// shrinking window with the scalar comparisons, and watertight lanes with an exact zero edge
+// function take the scalar method's double fallback.
 
 #include "base/large_pages.h"
 #include "intersect/hit.h"
@@ -16,9 +16,7 @@
 
 #include <bit>
 #include <cstdint>
-#include <optional>
 #include <span>
-#include <vector>
 
 namespace rtlab {
 
@@ -46,6 +44,8 @@ struct TriangleSoA {
 
     /// Number of slots (without the padding).
     std::uint32_t size() const { return slots; }
+    /// Bytes of the groups, padding included.
+    std::size_t bytes() const { return data.size() * sizeof(float); }
     /// Row r (0..8) of group g: four floats.
     const float* row(std::uint32_t g, unsigned r) const {
         return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
@@ -67,33 +67,5 @@ TriangleSoA make_triangle_soa(std::span<const VertexTriangleMethod<float>::Prepa
                               std::span<const std::uint32_t> slot_ids,
                               SoaLayout layout,
                               std::span<const std::uint32_t> ids = {});
-
-/// Closest hit among slots [first, first + count), exactly as MollerTrumbore<float>::intersect
-/// on each slot in order, each hit shrinking ray.tmax (which this does too); nullopt if none.
-/// soa.layout must be edges.
-std::optional<SlotHit> soa_closest_mt(const TriangleSoA& soa,
-                                      std::uint32_t first,
-                                      std::uint32_t count,
-                                      Rayf& ray);
-
-/// The first slot of [first, first + count) MollerTrumbore<float>::occluded reports, or nullopt.
-std::optional<std::uint32_t> soa_any_mt(const TriangleSoA& soa,
-                                        std::uint32_t first,
-                                        std::uint32_t count,
-                                        const Rayf& ray);
-
-/// As soa_closest_mt for Watertight<float> with the ray's set-up wr; layout must be vertices.
-std::optional<SlotHit> soa_closest_watertight(const TriangleSoA& soa,
-                                              std::uint32_t first,
-                                              std::uint32_t count,
-                                              Rayf& ray,
-                                              const WatertightRay<float>& wr);
-
-/// As soa_any_mt for Watertight<float>.
-std::optional<std::uint32_t> soa_any_watertight(const TriangleSoA& soa,
-                                                std::uint32_t first,
-                                                std::uint32_t count,
-                                                const Rayf& ray,
-                                                const WatertightRay<float>& wr);
 
 }  // namespace rtlab

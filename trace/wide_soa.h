@@ -1,14 +1,13 @@
 #pragma once
-// Wide BVHs over TriangleSoA or SphereSoA leaf data with the leaf kernel inlined into traversal:
-// one function per SIMD level (trace/wide_soa.inc) holds the node tests and the leaf tests of that
-// level, so a leaf costs no call and no level look-up; it traces a whole block of rays, so the
-// level, the node layout and the call are chosen once per block, not per ray. The answers are
-// those of WideBvh::intersect_leaves / occluded_leaves with soa_closest_* / soa_any_*
-// (sphere_soa_closest / sphere_soa_any) as the leaf callback (same order of visits, same counts).
+// Wide BVHs over a method's leaf data with its hand-written SIMD leaf kernel (trace/leaf_kernel.h,
+// simd = true) inlined into traversal: one function per SIMD level (trace/wide_soa.inc) holds the
+// node tests and the leaf tests of that level, so a leaf costs no call and no level look-up; it
+// traces a whole block of rays, so the level, the node layout and the call are chosen once per
+// block, not per ray. The answers are those of WideBvh::intersect_leaves / occluded_leaves with
+// kernel_closest / kernel_any as the leaf callback (same order of visits, same counts).
 
 #include "accel/bvh/wide_bvh.h"
-#include "trace/sphere_soa_kernels.h"
-#include "trace/triangle_soa_kernels.h"
+#include "trace/leaf_kernel.h"
 
 #include <concepts>
 #include <cstddef>
@@ -55,14 +54,13 @@ void count_rays_of_empty(B& block) {
 
 /// Closest hit (IsAnyHit false: block.put(i, SlotHit), the nearest slot and its hit) or any hit
 /// (block.put(i, slot), the first blocking slot found) of every ray of the block through bvh with
-/// leaf data q in its slot order (TriangleSoA: Möller–Trumbore for the edges layout, watertight
-/// with IsWatertight for the vertices layout; SphereSoA: SphereStable<float>), the method's
-/// per-ray set-up made per ray. The SIMD level and node layout are chosen once per block. The
-/// answers and counts are those of WideBvh::intersect_leaves / occluded_leaves with
-/// soa_closest_* / soa_any_* (sphere_soa_closest / sphere_soa_any) as the leaf callback.
-template <bool IsAnyHit, bool IsRobust, bool IsWatertight, unsigned N, class Q, RayBlock B>
-requires std::same_as<Q, TriangleSoA> || std::same_as<Q, SphereSoA>
-void wide_leaf_trace_block(const WideBvh<N>& bvh, const Q& q, B& block) {
+/// method M's leaf data q in its slot order, M's per-ray set-up made per ray. The SIMD level and
+/// node layout are chosen once per block. The answers and counts are those of
+/// WideBvh::intersect_leaves / occluded_leaves with kernel_closest / kernel_any as the leaf
+/// callback.
+template <bool IsAnyHit, bool IsRobust, class M, unsigned N, RayBlock B>
+void wide_leaf_trace_block(const WideBvh<N>& bvh, const LeafData<M>& q, B& block) {
+    static_assert(LeafKernel<M>::simd, "the generic kernel is inlined ray by ray (batch_loop.h)");
     if (bvh.nodes.empty()) {
         count_rays_of_empty(block);
         return;
@@ -70,15 +68,15 @@ void wide_leaf_trace_block(const WideBvh<N>& bvh, const Q& q, B& block) {
     bvh.visit_view([&](const auto& view) {
         switch (simd_level()) {
         case SimdLevel::avx512:
-            simd_avx512::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            simd_avx512::wide_leaf_trace_block<IsAnyHit, IsRobust, M>(view, q, block);
             return;
         case SimdLevel::avx2:
-            simd_avx2::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+            simd_avx2::wide_leaf_trace_block<IsAnyHit, IsRobust, M>(view, q, block);
             return;
         case SimdLevel::sse2:
             break;
         }
-        simd_sse2::wide_leaf_trace_block<IsAnyHit, IsRobust, IsWatertight>(view, q, block);
+        simd_sse2::wide_leaf_trace_block<IsAnyHit, IsRobust, M>(view, q, block);
     });
 }
 

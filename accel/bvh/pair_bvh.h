@@ -66,9 +66,6 @@ struct PairBvh {
     std::uint32_t prim_count = 0;          ///< number of input boxes
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
     Bvh::Config config;                    ///< the source binary build's configuration
-    /// True when tracers should store triangle data in slot order and test whole leaves with the
-    /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
-    bool soa_leaves = true;
 
     /// The same tree as b, in pair nodes with their children in `order`; b by value, so that a
     /// build's temporary source gives up its prim_ids instead of having them copied.

@@ -40,9 +40,6 @@ struct WideBvh {
     std::uint32_t prim_count = 0;          ///< number of input boxes (ids are < prim_count)
     std::uint32_t unreferenced_count = 0;  ///< input boxes left out (empty, NaN or infinite)
     Bvh::Config config;                    ///< the source binary build's configuration
-    /// True when tracers should store triangle data in slot order and test whole leaves with the
-    /// SIMD leaf kernels (intersect_leaves); false keeps the per-id path (for comparisons).
-    bool soa_leaves = true;
 
     /// Closest hit: offers hit_fn every primitive of every leaf whose box the shrinking window
     /// meets, nearer children first. Invalid rays return false before any node.

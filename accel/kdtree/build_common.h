@@ -103,7 +103,6 @@ inline KdTree start_tree(const BuildInput& in, const KdTree::Config& cfg) {
     t.traversal_cost = cfg.traversal_cost;
     t.intersection_cost = cfg.intersection_cost;
     t.traversal = cfg.traversal;
-    t.soa_leaves = cfg.soa_leaves;
     return t;
 }
 

@@ -41,7 +41,6 @@ struct KdTree : LeafWalkQueries<KdTree> {
         bool perfect_splits = true;
         std::uint32_t threads = 0;  ///< TBB threads of the SAH build (0: all allowed); same tree
         KdTraversal traversal = KdTraversal::havran;  ///< copied to the tree (not a build choice)
-        bool soa_leaves = true;                       ///< copied to the tree (not a build choice)
     };
 
     /// Deepest possible leaf whatever the configuration; sizes the traversal stack.
@@ -56,10 +55,6 @@ struct KdTree : LeafWalkQueries<KdTree> {
     float traversal_cost = 1.0f;          ///< K_T the build used (for info().sah_cost)
     float intersection_cost = 1.5f;       ///< K_I the build used (for info().sah_cost)
     KdTraversal traversal = KdTraversal::havran;  ///< the walk intersect/occluded use
-    /// True when tracers should store triangle data in slot order (prim_ids order, duplicates
-    /// included) and test whole leaves with the SIMD leaf kernels (intersect_leaves); false
-    /// keeps the per-id path (for comparisons).
-    bool soa_leaves = true;
 
     /// Closest hit offering whole leaves: leaf_fn(first, count, ray) tests the primitives of
     /// prim_ids slots [first, first + count) in slot order, shrinks ray.tmax on a hit and returns

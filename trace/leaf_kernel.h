@@ -1,0 +1,126 @@
+#pragma once
+// The one table of leaf kernels: per intersection method, the slot-ordered leaf data a tracer
+// keeps for a structure that hands out whole leaves (LeafRangeAccel) and so the kernel that tests
+// a leaf of it. A method without an entry takes the generic kernel over SlotPrims<M>
+// (trace/slot_prims.h), so every method runs on every such layout through the same leaf path. A
+// hand-written SIMD kernel is one entry here (its data type, how to fill it, simd = true) plus its
+// kernel file, which defines leaf_closest and leaf_any over that data (and the method's RayDataOf)
+// in every SIMD level's namespace (base/simd_each_level.inc) and is included below; on wide BVHs
+// the tracer inlines it into one traversal per SIMD level (trace/wide_soa.h).
+
+#include "base/simd.h"
+#include "intersect/method.h"
+#include "trace/slot_prims.h"
+#include "trace/sphere_soa_kernels.h"
+#include "trace/triangle_soa_kernels.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+namespace rtlab {
+
+/// Method M's leaf data `Data` and `make(prims, slot_ids, ids)`, which fills it with prims in the
+/// slot order slot_ids (accel/accel.h, padding_slot entries included), each slot with the id
+/// ids[slot_ids[s]]; `simd` when the kernel is a hand-written one compiled per SIMD level.
+/// Default: the generic kernel over SlotPrims<M>.
+template <class M>
+struct LeafKernel {
+    using Data = SlotPrims<M>;
+    static constexpr bool simd = false;
+    static Data make(std::span<const typename M::Prepared> prims,
+                     std::span<const std::uint32_t> slot_ids,
+                     std::span<const std::uint32_t> ids) {
+        return make_slot_prims<M>(prims, slot_ids, ids);
+    }
+};
+
+/// Möller–Trumbore on 4 or 8 lanes over edges (trace/triangle_soa_kernels.inc).
+template <>
+struct LeafKernel<MollerTrumbore<float>> {
+    using Data = TriangleSoA;
+    static constexpr bool simd = true;
+    static Data make(std::span<const VertexTriangleMethod<float>::Prepared> prims,
+                     std::span<const std::uint32_t> slot_ids,
+                     std::span<const std::uint32_t> ids) {
+        return make_triangle_soa(prims, slot_ids, SoaLayout::edges, ids);
+    }
+};
+
+/// Watertight on 4 or 8 lanes over vertices (trace/triangle_soa_kernels.inc).
+template <>
+struct LeafKernel<Watertight<float>> {
+    using Data = TriangleSoA;
+    static constexpr bool simd = true;
+    static Data make(std::span<const VertexTriangleMethod<float>::Prepared> prims,
+                     std::span<const std::uint32_t> slot_ids,
+                     std::span<const std::uint32_t> ids) {
+        return make_triangle_soa(prims, slot_ids, SoaLayout::vertices, ids);
+    }
+};
+
+/// SphereStable on 4 or 8 lanes (trace/sphere_soa_kernels.inc).
+template <>
+struct LeafKernel<SphereStable<float>> {
+    using Data = SphereSoA;
+    static constexpr bool simd = true;
+    static Data make(std::span<const PreparedSphere<float>> prims,
+                     std::span<const std::uint32_t> slot_ids,
+                     std::span<const std::uint32_t> ids) {
+        return make_sphere_soa(prims, slot_ids, ids);
+    }
+};
+
+/// The leaf data of M's kernel.
+template <class M>
+using LeafData = typename LeafKernel<M>::Data;
+
+/// Closest hit of M's leaf kernel among slots [first, first + count) of q, exactly as M's scalar
+/// test on each slot in order, each hit shrinking ray.tmax (which this does too), rd the ray's
+/// set-up (precompute_ray<M>); nullopt if none. For callers outside SIMD-level code: a
+/// hand-written kernel's level is chosen per call.
+template <class M>
+std::optional<SlotHit> kernel_closest(const LeafData<M>& q,
+                                      std::uint32_t first,
+                                      std::uint32_t count,
+                                      Rayf& ray,
+                                      const RayDataOf<M>& rd) {
+    if constexpr (!LeafKernel<M>::simd) {
+        return slot_prims_closest<M>(q, first, count, ray, rd);
+    } else {
+        switch (simd_level()) {
+        case SimdLevel::avx512:
+            return simd_avx512::leaf_closest(q, first, count, ray, rd);
+        case SimdLevel::avx2:
+            return simd_avx2::leaf_closest(q, first, count, ray, rd);
+        case SimdLevel::sse2:
+            break;
+        }
+        return simd_sse2::leaf_closest(q, first, count, ray, rd);
+    }
+}
+
+/// The first slot of [first, first + count) of q that M's scalar any-hit test reports, or
+/// nullopt; the level chosen per call as kernel_closest.
+template <class M>
+std::optional<std::uint32_t> kernel_any(const LeafData<M>& q,
+                                        std::uint32_t first,
+                                        std::uint32_t count,
+                                        const Rayf& ray,
+                                        const RayDataOf<M>& rd) {
+    if constexpr (!LeafKernel<M>::simd) {
+        return slot_prims_any<M>(q, first, count, ray, rd);
+    } else {
+        switch (simd_level()) {
+        case SimdLevel::avx512:
+            return simd_avx512::leaf_any(q, first, count, ray, rd);
+        case SimdLevel::avx2:
+            return simd_avx2::leaf_any(q, first, count, ray, rd);
+        case SimdLevel::sse2:
+            break;
+        }
+        return simd_sse2::leaf_any(q, first, count, ray, rd);
+    }
+}
+
+}  // namespace rtlab
