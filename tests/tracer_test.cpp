@@ -317,8 +317,8 @@ TEST_CASE("structures large enough to prefetch children trace like brute force",
 TEST_CASE("every method's leaf kernel on the wide layouts answers as its scalar per-id path",
           "[trace][methods][wide]") {
     // `leaves=soa` tests whole leaves with the method's leaf kernel (trace/leaf_kernel.h: the
-    // hand-written ones, else the generic one over SlotPrims), `leaves=ids` one primitive id at a time
-    // with the scalar method: the same hits and blockers, t, u and v bit for bit.
+    // hand-written ones, else the generic one over SlotPrims), `leaves=ids` one primitive id at a
+    // time with the scalar method: the same hits and blockers, t, u and v bit for bit.
     const auto same_bits = [](float a, float b) {
         return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
     };

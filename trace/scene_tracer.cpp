@@ -187,8 +187,8 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup)
     if constexpr (requires { std::get<ShapeBucket<Trianglef>>(buckets.all); }) {
         triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
     }
-    SetAdder add{setup, accel_spec_, slot_ordered_leaves(accel_spec_), sets_, set_methods_,
-                 build_ms_};
+    const bool slots = slot_ordered_leaves(accel_spec_);
+    SetAdder add{setup, accel_spec_, slots, sets_, set_methods_, build_ms_};
     std::apply(
         [&](auto&... b) {
             (add(b.shapes, std::move(b.ids), clip_for(b.shapes), extent_for(b.shapes)), ...);
