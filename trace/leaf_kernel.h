@@ -86,7 +86,17 @@ std::optional<SlotHit> kernel_closest(const LeafData<M>& q,
                                       Rayf& ray,
                                       const RayDataOf<M>& rd) {
     if constexpr (!LeafKernel<M>::simd) {
-        return slot_prims_closest<M>(q, first, count, ray, rd);
+        // The generic kernel: the slots in order, inlined into the traversal that calls it. (A
+        // lane-parallel version, a group of slots tested with one window and re-tested after a
+        // hit, measured 6-24 % slower on bvh8; see docs/architecture.md.)
+        std::optional<SlotHit> best;
+        for (std::uint32_t s = first; s < first + count; ++s) {
+            if (const auto h = intersect_with<M>(q.prims[s], ray, rd)) {
+                ray.tmax = h->t;
+                best = SlotHit{s, *h};
+            }
+        }
+        return best;
     } else {
         switch (simd_level()) {
         case SimdLevel::avx512:
@@ -109,7 +119,12 @@ std::optional<std::uint32_t> kernel_any(const LeafData<M>& q,
                                         const Rayf& ray,
                                         const RayDataOf<M>& rd) {
     if constexpr (!LeafKernel<M>::simd) {
-        return slot_prims_any<M>(q, first, count, ray, rd);
+        for (std::uint32_t s = first; s < first + count; ++s) {
+            if (occluded_with<M>(q.prims[s], ray, rd)) {
+                return s;
+            }
+        }
+        return std::nullopt;
     } else {
         switch (simd_level()) {
         case SimdLevel::avx512:

@@ -1,17 +1,14 @@
 #pragma once
-// A method's prepared primitives in a structure's leaf-slot order, with their ids, and the
-// generic leaf kernel over them: the leaf data and kernel of every method without a hand-written
-// SIMD kernel (trace/leaf_kernel.h). Leaves are then tested without an id indirection, as
+// A method's prepared primitives in a structure's leaf-slot order, with their ids: the leaf data
+// of the generic leaf kernel (trace/leaf_kernel.h) of every method without a hand-written SIMD
+// kernel. Leaves are then tested without an id indirection, as
 // madmann91/bvh's examples permute their triangles.
 
 #include "accel/accel.h"
 #include "base/large_pages.h"
-#include "intersect/method.h"
-#include "trace/leaf_soa.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <span>
 
 namespace rtlab {
@@ -49,41 +46,6 @@ SlotPrims<M> make_slot_prims(std::span<const typename M::Prepared> prims,
         q.ids.push_back(ids.empty() ? i : ids[i]);
     }
     return q;
-}
-
-/// Closest hit among slots [first, first + count): M's scalar test on each slot in order, each
-/// hit shrinking ray.tmax; nullopt if none. Inlined into the traversal that calls it. (A
-/// lane-parallel version, testing a group of slots with one window and re-testing after a hit,
-/// measured 6-24 % slower on bvh8; see docs/architecture.md.)
-template <class M>
-std::optional<SlotHit> slot_prims_closest(const SlotPrims<M>& q,
-                                          std::uint32_t first,
-                                          std::uint32_t count,
-                                          Rayf& ray,
-                                          const RayDataOf<M>& rd) {
-    std::optional<SlotHit> best;
-    for (std::uint32_t s = first; s < first + count; ++s) {
-        if (const auto h = intersect_with<M>(q.prims[s], ray, rd)) {
-            ray.tmax = h->t;
-            best = SlotHit{s, *h};
-        }
-    }
-    return best;
-}
-
-/// The first slot of [first, first + count) that M's scalar any-hit test reports, or nullopt.
-template <class M>
-std::optional<std::uint32_t> slot_prims_any(const SlotPrims<M>& q,
-                                            std::uint32_t first,
-                                            std::uint32_t count,
-                                            const Rayf& ray,
-                                            const RayDataOf<M>& rd) {
-    for (std::uint32_t s = first; s < first + count; ++s) {
-        if (occluded_with<M>(q.prims[s], ray, rd)) {
-            return s;
-        }
-    }
-    return std::nullopt;
 }
 
 }  // namespace rtlab

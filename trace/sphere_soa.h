@@ -23,29 +23,7 @@ namespace rtlab {
 /// s % 4 of a row is slot s), so a leaf's spheres and the id of its hit lie in one or two adjacent
 /// 80-byte groups. One zero group of padding follows the last, so two-group (8-lane) loads from
 /// any slot's group stay inside the data.
-struct SphereSoA {
-    static constexpr std::uint32_t group = 4;                    ///< slots per group
-    static constexpr std::uint32_t rows = 5;                     ///< cx, cy, cz, radius2, id
-    static constexpr std::uint32_t group_floats = group * rows;  ///< floats per group
-    static constexpr unsigned id_row = 4;                        ///< the row of the ids
-    std::uint32_t slots = 0;  ///< number of slots (without the padding)
-    LargeVector<float> data;  ///< the groups, then one zero group
-
-    /// Number of slots (without the padding).
-    std::uint32_t size() const { return slots; }
-    /// Bytes of the groups, padding included.
-    std::size_t bytes() const { return data.size() * sizeof(float); }
-    /// Row r (0..4) of group g: four floats.
-    const float* row(std::uint32_t g, unsigned r) const {
-        return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
-    }
-    /// Coordinate r (0..3: centre x, y, z, radius2) of slot s.
-    float at(std::uint32_t s, unsigned r) const { return row(s / group, r)[s % group]; }
-    /// The id stored for slot s.
-    std::uint32_t id(std::uint32_t s) const {
-        return std::bit_cast<std::uint32_t>(row(s / group, id_row)[s % group]);
-    }
-};
+struct SphereSoA : SoaGroups<5> {};  // rows: cx, cy, cz, radius2, id
 
 /// The spheres prims[slot_ids[s]] for every slot s, each with the id ids[slot_ids[s]]
 /// (slot_ids[s] itself when ids is empty); a padding_slot entry (accel/accel.h) stays zero.

@@ -34,28 +34,8 @@ enum class SoaLayout : std::uint8_t {
 /// Embree's Triangle4 leaves).
 /// One zero group of padding follows the last, so two-group (8-lane) loads from any slot's group
 /// stay inside the data.
-struct TriangleSoA {
-    static constexpr std::uint32_t group = 4;                    ///< slots per group
-    static constexpr std::uint32_t rows = 10;                    ///< rows per group (9 + ids)
-    static constexpr std::uint32_t group_floats = group * rows;  ///< floats per group
+struct TriangleSoA : SoaGroups<10> {  // rows: 9 coordinates, id
     SoaLayout layout = SoaLayout::edges;
-    std::uint32_t slots = 0;  ///< number of slots (without the padding)
-    LargeVector<float> data;  ///< the groups, then one zero group
-
-    /// Number of slots (without the padding).
-    std::uint32_t size() const { return slots; }
-    /// Bytes of the groups, padding included.
-    std::size_t bytes() const { return data.size() * sizeof(float); }
-    /// Row r (0..8) of group g: four floats.
-    const float* row(std::uint32_t g, unsigned r) const {
-        return data.data() + std::size_t{g} * group_floats + std::size_t{r} * group;
-    }
-    /// Coordinate r (0..8, as the rows) of slot s.
-    float at(std::uint32_t s, unsigned r) const { return row(s / group, r)[s % group]; }
-    /// The id stored for slot s (row 9).
-    std::uint32_t id(std::uint32_t s) const {
-        return std::bit_cast<std::uint32_t>(row(s / group, 9)[s % group]);
-    }
     /// The vertices of slot s as the scalar methods take them.
     VertexTriangleMethod<float>::Prepared vertices(std::uint32_t s) const;
 };
