@@ -88,34 +88,7 @@ public:
             const std::uint32_t l = inline_child(out, left);
             return {l, inline_child(out, right)};
         }
-        std::unique_ptr<Chunk> lc = lt ? new_chunk(left.size) : nullptr;
-        std::unique_ptr<Chunk> rc = rt ? new_chunk(right.size) : nullptr;
-        std::uint32_t l_slot = lt ? place_holder(out, left.slot) : left.slot;
-        std::uint32_t r_slot = right.slot;
-        const std::size_t at = out.nodes.size(), ids_at = out.ids.size();
-        tbb::parallel_invoke(
-            [&] {
-                if (lt) {
-                    left.build(*lc, 0);
-                } else {
-                    l_slot = inline_child(out, left);
-                }
-            },
-            [&] {
-                if (rt) {
-                    right.build(*rc, 0);
-                } else {
-                    r_slot = inline_child(out, right);
-                }
-            });
-        if (lt) {
-            out.subs.push_back({l_slot, at, ids_at, std::move(lc)});
-        }
-        if (rt) {
-            r_slot = place_holder(out, r_slot);
-            out.subs.push_back({r_slot, out.nodes.size(), out.ids.size(), std::move(rc)});
-        }
-        return {l_slot, r_slot};
+        return fork_tasks(out, left, right, lt, rt);
     }
 
     /// True when a child of `size` primitives becomes a task of its own (a parallel build and
@@ -154,6 +127,43 @@ public:
     }
 
 private:
+    // fork with at least one child a task: that child into a new chunk, concurrently with the
+    // other. Out of line, so that the recursion that calls fork keeps a small stack frame (the
+    // TBB task objects are 64-byte aligned and large; inlined into a recursive builder they made
+    // every level's frame 1.2 KB, and a deep recursion then ran out of L1).
+    template <class L, class R>
+    [[gnu::noinline]] std::pair<std::uint32_t, std::uint32_t> fork_tasks(
+        Chunk& out, TaskBranch<L>& left, TaskBranch<R>& right, bool lt, bool rt) {
+        std::unique_ptr<Chunk> lc = lt ? new_chunk(left.size) : nullptr;
+        std::unique_ptr<Chunk> rc = rt ? new_chunk(right.size) : nullptr;
+        std::uint32_t l_slot = lt ? place_holder(out, left.slot) : left.slot;
+        std::uint32_t r_slot = right.slot;
+        const std::size_t at = out.nodes.size(), ids_at = out.ids.size();
+        tbb::parallel_invoke(
+            [&] {
+                if (lt) {
+                    left.build(*lc, 0);
+                } else {
+                    l_slot = inline_child(out, left);
+                }
+            },
+            [&] {
+                if (rt) {
+                    right.build(*rc, 0);
+                } else {
+                    r_slot = inline_child(out, right);
+                }
+            });
+        if (lt) {
+            out.subs.push_back({l_slot, at, ids_at, std::move(lc)});
+        }
+        if (rt) {
+            r_slot = place_holder(out, r_slot);
+            out.subs.push_back({r_slot, out.nodes.size(), out.ids.size(), std::move(rc)});
+        }
+        return {l_slot, r_slot};
+    }
+
     // Where a chunk lands: its node 0 at `root`, its other nodes from `start`, its ids from
     // `id_start` (children's nodes and ids interleaved as place() computes).
     struct Place {

@@ -1,8 +1,9 @@
 // A spec records only what takes effect: for every registry row, in every context (the defaults,
 // and each value of each choice parameter), moving a key the spec accepts changes the structure
-// (the same structure for a build-only key such as threads, or a tracer-only one such as a
-// kd-tree's leaves), and a key the spec refuses as having
-// no effect indeed builds the same structure. The canonical spec names exactly the accepted keys.
+// or what the tracer reads of the spec (slot_ordered_leaves); a build-only key such as threads
+// changes neither, a tracer-only one such as a kd-tree's leaves only the tracer's part; a key the
+// spec refuses as having no effect indeed builds the same structure. The canonical spec names
+// exactly the accepted keys.
 
 #include "accel/any_accel.h"
 #include "support/accel_fixtures.h"
@@ -191,7 +192,8 @@ TEST_CASE("every key a spec accepts takes effect, every key it refuses has none"
                     continue;
                 }
                 std::size_t refused = 0;
-                bool changed = false;
+                bool changed = false;         // some structure differs from the context's
+                bool tracer_changed = false;  // the tracer's leaf policy differs
                 std::vector<double> values = moves(p, p.default_value);
                 if (p.build_only) {
                     values.resize(1);  // threads=1 against all; not 256 threads on a small machine
@@ -222,6 +224,9 @@ TEST_CASE("every key a spec accepts takes effect, every key it refuses has none"
                                 changed = changed || !(without_settings(b[k]) == shown_base[k]);
                             }
                         }
+                        tracer_changed =
+                            tracer_changed || slot_ordered_leaves(parse_accel_spec(text)) !=
+                                                  slot_ordered_leaves(base_spec);
                         const std::string canonical = parse_accel_spec(text).canonical();
                         CHECK(parse_accel_spec(canonical).canonical() == canonical);
                         continue;
@@ -243,7 +248,10 @@ TEST_CASE("every key a spec accepts takes effect, every key it refuses has none"
                 CHECK((refused == 0 || refused == values.size()));
                 if (refused == 0) {
                     accepted.emplace_back(p.key);
-                    CHECK(changed != (p.build_only || p.tracer_only));
+                    if (p.build_only || p.tracer_only) {
+                        CHECK_FALSE(changed);
+                    }
+                    CHECK((changed || tracer_changed) != p.build_only);
                 }
             }
             // The canonical spec names exactly the keys that take effect here, and reads back.
