@@ -300,11 +300,13 @@ RaySet lattice_set(std::uint64_t seed, float s) {
 }
 
 /// Axis-aligned rays at the lattice targets: straight down and up (two zero components), along
-/// x and y at the target's height (grazing the terrain), and diagonal in xz and yz (one zero).
+/// x and y at the target's height (grazing the terrain), diagonal in xz and yz (one zero), and
+/// down with a denormal x component.
 RaySet axis_set(float s) {
     constexpr int n = 4;
     RaySet set{"axis-aligned s=" + std::to_string(s), lattice(n, s), {}};
-    const Vec3f dirs[] = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {0, -1, 0}, {1, 0, -1}, {0, -1, -1}};
+    const Vec3f dirs[] = {{0, 0, -1}, {0, 0, 1},   {1, 0, 0},           {0, -1, 0},
+                          {1, 0, -1}, {0, -1, -1}, {0x1.0p-140f, 0, -1}};  // a denormal component
     std::size_t k = 0;
     for (const Vec3f& t : lattice_targets(n, s)) {
         for (const Vec3f& d : dirs) {
@@ -478,6 +480,23 @@ TEST_CASE("certified hits round t to nearest and break exact ties by the lowest 
     const ExactHit h3 = exact_intersect(third, a.p0, a.p1, a.p2);
     REQUIRE(h3.hit);
     CHECK(h3.t == 1.0f / 3.0f);
+}
+
+TEST_CASE("certified hits order distinct exact t that round to one float", "[exact]") {
+    // Planes z = 3 and z = 3 + 2^-22 seen from z = -2^-22 along (0, 0, 3): t = 1 + 2^-22 / 3 and
+    // 1 + 2^-21 / 3 both round to 1 + 2^-23, so only the exact comparison orders them.
+    const float h = 3.0f + 0x1.0p-22f;
+    const Trianglef near{{0, 0, 3}, {1, 0, 3}, {0, 1, 3}}, far{{0, 0, h}, {1, 0, h}, {0, 1, h}};
+    const Rayf ray{{0.25f, 0.25f, -0x1.0p-22f}, {0, 0, 3}, 0.0f, inf};
+    const ExactHit hn = exact_intersect(ray, near.p0, near.p1, near.p2);
+    const ExactHit hf = exact_intersect(ray, far.p0, far.p1, far.p2);
+    REQUIRE(hn.hit);
+    REQUIRE(hf.hit);
+    CHECK(hn.t == hf.t);
+    CHECK(exact_less(ray, hn, near, 9, hf, far, 1));  // smaller t wins over the lower id
+    CHECK_FALSE(exact_less(ray, hf, far, 1, hn, near, 9));
+    CHECK(exact_compare_t(ray, near, far) == -1);
+    CHECK(exact_compare_t(ray, far, far) == 0);
 }
 
 TEST_CASE("certified hits round t at and next to a midpoint between floats", "[exact]") {
