@@ -168,7 +168,7 @@ void check_set(const RaySet& set) {
     for (std::size_t i = 0; i < set.rays.size(); ++i) {
         score_ray(set, i, s);
     }
-    WARN(set.name << ": " << s.rays << " rays, " << s.pairs << " pairs, " << s.fallbacks
+    INFO(set.name << ": " << s.rays << " rays, " << s.pairs << " pairs, " << s.fallbacks
                   << " exact fallbacks; watertight float: " << s.wt_pair_errors
                   << " pairs wrong, closest " << s.wt_hit_errors << " hit/miss, "
                   << s.wt_prim_errors << " primitive, " << s.wt_t_errors << " t not nearest");
