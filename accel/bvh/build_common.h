@@ -490,7 +490,7 @@ private:
         out.nodes.emplace_back();
         out.nodes.emplace_back();
         if (tree.is_task(e - b)) {
-            return build_forked<Boxes>(tree, out, node, split, b, e, depth, given, *s, left);
+            return build_forked<Boxes>(tree, out, split, {node, b, e, depth, left, *s, given});
         }
         // Neither child is a task: fork would build both inline; recurse directly (a lean frame).
         const auto [lg, rg] = child_boxes<Boxes>(b, s->mid, e);
@@ -499,23 +499,25 @@ private:
         return put_inner<Boxes>(out.nodes[node], given, lb, rb, left, s->axis);
     }
 
-    // build's node with children from `left` split by s when a child may be a task: through
-    // TaskTree::fork. Out of line, so that build's own frame stays small (a deep recursion with
-    // the fork's branches in every frame spilled out of L1 and slowed bvh:lbvh by a fifth).
+    // An inner node of build whose children may be tasks: out.nodes[node] over ids[b, e) at
+    // `depth`, its box `given`, split by `split`, its children at left and left + 1.
+    struct Forked {
+        std::uint32_t node, b, e, depth, left;
+        Split split;
+        Bounds3f given;
+    };
+
+    // Builds f's children through TaskTree::fork and fills its node. Out of line, so that
+    // build's own frame stays small (a deep recursion with the fork's branches in every frame
+    // spilled out of L1 and slowed bvh:lbvh by a fifth).
     template <NodeBoxes Boxes, class SplitFn>
     [[gnu::noinline]] Bounds3f build_forked(BvhTaskTree& tree,
                                             BvhTaskTree::Chunk& out,
-                                            std::uint32_t node,
                                             SplitFn& split,
-                                            std::uint32_t b,
-                                            std::uint32_t e,
-                                            std::uint32_t depth,
-                                            const Bounds3f& given,
-                                            const Split& s,
-                                            std::uint32_t left) {
-        const auto [lg, rg] = child_boxes<Boxes>(b, s.mid, e);
+                                            const Forked& f) {
+        const std::uint32_t b = f.b, m = f.split.mid, e = f.e, depth = f.depth, left = f.left;
+        const auto [lg, rg] = child_boxes<Boxes>(b, m, e);
         Bounds3f lb, rb;
-        const std::uint32_t m = s.mid;
         tree.fork(
             out,
             TaskBranch{left, m - b,
@@ -525,7 +527,7 @@ private:
             TaskBranch{left + 1, e - m, [&, rg = rg](BvhTaskTree::Chunk& c, std::uint32_t at) {
                            rb = build<Boxes>(tree, c, at, split, m, e, depth + 1, rg);
                        }});
-        return put_inner<Boxes>(out.nodes[node], given, lb, rb, left, s.axis);
+        return put_inner<Boxes>(out.nodes[f.node], f.given, lb, rb, left, f.split.axis);
     }
 };
 
