@@ -262,6 +262,10 @@ private:
     template <class Relink>
     static void copy(const Place& p, Nodes& nodes, Ids* ids, const Relink& relink) {
         const Chunk& c = *p.chunk;
+        if (c.subs.empty()) {
+            copy_whole(p, nodes, ids, relink);  // most chunks, holding most nodes
+            return;
+        }
         const auto node_of = [&](std::uint32_t j) { return node_at(p, j); };
         std::size_t k = 0, node_shift = 0;
         for (std::size_t j = 0; j < c.nodes.size(); ++j) {
@@ -298,6 +302,22 @@ private:
                 id_shift += c.subs[k].chunk->ids_below;
             }
             (*ids)[p.id_start + id_shift + j] = c.ids[j];
+        }
+    }
+
+    // copy for a chunk without subs: its node j >= 1 lands at start + j - 1, its id o at
+    // id_start + o.
+    template <class Relink>
+    static void copy_whole(const Place& p, Nodes& nodes, Ids* ids, const Relink& relink) {
+        const Chunk& c = *p.chunk;
+        const auto node_of = [&](std::uint32_t j) { return p.start + j - 1; };
+        const auto id_of = [&](std::size_t o, std::size_t) { return p.id_start + o; };
+        nodes[p.root] = relink(c.nodes[0], node_of, id_of);
+        for (std::size_t j = 1; j < c.nodes.size(); ++j) {
+            nodes[p.start + j - 1] = relink(c.nodes[j], node_of, id_of);
+        }
+        if (ids != nullptr) {
+            std::copy(c.ids.begin(), c.ids.end(), ids->begin() + p.id_start);
         }
     }
 

@@ -80,6 +80,7 @@ void sweep(const Bins<Box>& g,
     thread_local std::vector<std::uint32_t> at;  // the bins to sweep, in order
     thread_local std::vector<Box> right_box;     // union of the bins after at[p]
     thread_local std::vector<std::uint32_t> right_count;
+    thread_local std::vector<float> right_cost;  // area(right_box[p]) * count(right_count[p])
     const std::uint32_t nb = g.count;
     const bool spatial = !g.leave.empty();
     const Box* box = &g.box[axis * nb];
@@ -88,6 +89,7 @@ void sweep(const Bins<Box>& g,
     at.resize(nb);
     right_box.resize(nb);
     right_count.resize(nb);
+    right_cost.resize(nb);
     std::uint32_t m = 0;
     for (std::uint32_t k = 0; k < nb; ++k) {
         at[m] = k;
@@ -100,6 +102,7 @@ void sweep(const Bins<Box>& g,
         cnt += leave[at[p]];
         right_box[p - 1] = acc;
         right_count[p - 1] = cnt;
+        right_cost[p - 1] = area(acc) * count(cnt);
     }
     acc = Box{};
     cnt = 0;
@@ -109,7 +112,7 @@ void sweep(const Bins<Box>& g,
         if (cnt == 0 || right_count[p] == 0) {
             continue;
         }
-        const float cost = area(acc) * count(cnt) + area(right_box[p]) * count(right_count[p]);
+        const float cost = area(acc) * count(cnt) + right_cost[p];
         if (cost < best.cost) {
             best = {cost, axis, at[p], acc, right_box[p]};
         }

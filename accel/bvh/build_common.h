@@ -321,7 +321,9 @@ Bvh::Config clamped(const Bvh::Config& cfg);
 /// n primitives as the SAH counts them, in started blocks of cfg.sah_block: ceil(n / block), as
 /// Embree's builders count them for leaves tested a SIMD block at a time (its sahBlockSize).
 inline float sah_count(const Bvh::Config& cfg, std::uint32_t n) {
-    return static_cast<float>((n + cfg.sah_block - 1) / cfg.sah_block);
+    // Blocks of one (the default) skip the integer division, which sweeps call twice per plane.
+    const std::uint32_t b = cfg.sah_block;
+    return static_cast<float>(b == 1 ? n : (n + b - 1) / b);
 }
 
 /// True when the SAH makes a range of n primitives a leaf whatever its splits: it fits one and
