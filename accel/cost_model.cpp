@@ -275,13 +275,6 @@ double grid_prims(const std::vector<Bounds3f>& span, const AreaRatio& p) {
 
 }  // namespace
 
-CostParams cost_params(const AccelSpec& spec) {
-    CostParams p;
-    p.ct = spec.value_or("ct", p.ct);
-    p.ci = spec.value_or("ci", p.ci);
-    return p;
-}
-
 CostEstimate expected_cost(const BruteForce& a) {
     CostEstimate e;
     Bounds3f root;

@@ -4,6 +4,7 @@
 // binary BVH builder: its own accel/bvh/build_<name>.cpp with one free function, declared here,
 // and its entry in binary_builders, which makes both its row and its `from=` choice.
 #include "accel/any_accel.h"
+#include "accel/cost_model.h"
 #include "accel/registry_fields.h"
 #include "base/thread_arena.h"
 
@@ -453,8 +454,16 @@ std::span<const AccelEntry> accel_registry() {
     return rows;
 }
 
+CostParams cost_params(const AccelSpec& spec) {
+    // The BVH and kd-tree rows spell their SAH costs alike.
+    CostParams p;
+    p.ct = spec.value_or(bvh_ct.param.key, p.ct);
+    p.ci = spec.value_or(bvh_ci.param.key, p.ci);
+    return p;
+}
+
 bool slot_ordered_leaves(const AccelSpec& s) {
-    return leaves.values.at(static_cast<std::size_t>(s.value_or(leaves.param.key, 0)));
+    return leaves.of_or(s, true);
 }
 
 std::span<const std::string_view> accel_variants() {

@@ -37,6 +37,12 @@ struct Choice {
     E of(const AccelSpec& s) const {
         return values.at(static_cast<std::size_t>(s.value(param.key)));
     }
+    /// The value the spec chose, or `absent` for a row without the key or where it takes no
+    /// effect (AccelSpec::value_or).
+    E of_or(const AccelSpec& s, E absent) const {
+        const double v = s.value_or(param.key, -1.0);
+        return v < 0.0 ? absent : values.at(static_cast<std::size_t>(v));
+    }
 };
 
 /// A choice of `key` among (name, value) pairs, the default the one named `default_name`.

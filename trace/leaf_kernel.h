@@ -35,29 +35,26 @@ struct LeafKernel {
     }
 };
 
-/// Möller–Trumbore on 4 or 8 lanes over edges (trace/triangle_soa_kernels.inc).
-template <>
-struct LeafKernel<MollerTrumbore<float>> {
+/// A hand-written triangle kernel on 4 or 8 lanes over TriangleSoA rows in `Layout`
+/// (trace/triangle_soa_kernels.inc).
+template <SoaLayout Layout>
+struct TriangleSoaKernel {
     using Data = TriangleSoA;
     static constexpr bool simd = true;
     static Data make(std::span<const VertexTriangleMethod<float>::Prepared> prims,
                      std::span<const std::uint32_t> slot_ids,
                      std::span<const std::uint32_t> ids) {
-        return make_triangle_soa(prims, slot_ids, SoaLayout::edges, ids);
+        return make_triangle_soa(prims, slot_ids, Layout, ids);
     }
 };
 
-/// Watertight on 4 or 8 lanes over vertices (trace/triangle_soa_kernels.inc).
+/// Möller–Trumbore over edges.
 template <>
-struct LeafKernel<Watertight<float>> {
-    using Data = TriangleSoA;
-    static constexpr bool simd = true;
-    static Data make(std::span<const VertexTriangleMethod<float>::Prepared> prims,
-                     std::span<const std::uint32_t> slot_ids,
-                     std::span<const std::uint32_t> ids) {
-        return make_triangle_soa(prims, slot_ids, SoaLayout::vertices, ids);
-    }
-};
+struct LeafKernel<MollerTrumbore<float>> : TriangleSoaKernel<SoaLayout::edges> {};
+
+/// Watertight over vertices.
+template <>
+struct LeafKernel<Watertight<float>> : TriangleSoaKernel<SoaLayout::vertices> {};
 
 /// SphereStable on 4 or 8 lanes (trace/sphere_soa_kernels.inc).
 template <>
