@@ -14,6 +14,8 @@
 #include "trace/sphere_soa_kernels.h"
 #include "trace/triangle_soa_kernels.h"
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -68,6 +70,38 @@ struct LeafKernel<SphereStable<float>> {
     }
 };
 
+/// Whether the generic kernel tests a leaf of `count` slots of a LaneMethod by its lane test: when
+/// it fills at least half a lane group (below that, slot by slot measured faster on kd-trees).
+inline bool lane_leaf(std::uint32_t count) {
+    return 2 * count >= lane_count;
+}
+
+/// For a LaneMethod M: calls decide(s, hits, k) for the slots s of [first, first + count) whose
+/// lane test with ray's window (at the time their group is tested) reports a hit, in slot order,
+/// s in lane k of `hits`, and returns the first for which it returns true (nullopt if none).
+template <class M, class Decide>
+std::optional<std::uint32_t> lane_candidates(const SlotPrims<M>& q,
+                                             std::uint32_t first,
+                                             std::uint32_t count,
+                                             const Rayf& ray,
+                                             const RayDataOf<M>& rd,
+                                             const Decide& decide) {
+    const std::uint32_t end = first + count;
+    for (std::uint32_t base = first / lane_count * lane_count; base < end; base += lane_count) {
+        const std::uint32_t lo = first > base ? first - base : 0;
+        const std::uint32_t hi = std::min(end - base, lane_count);
+        const unsigned in_leaf = ((1u << hi) - 1u) & ~((1u << lo) - 1u);
+        const LaneHit<FloatLanes> hits = lane_test<M>(q.lanes[base / lane_count], ray, rd);
+        for (unsigned m = in_leaf & lane_bits(hits.hit); m != 0; m &= m - 1) {
+            const auto k = static_cast<unsigned>(std::countr_zero(m));
+            if (decide(base + k, hits, k)) {
+                return base + k;
+            }
+        }
+    }
+    return std::nullopt;
+}
+
 /// The leaf data of M's kernel.
 template <class M>
 using LeafData = typename LeafKernel<M>::Data;
@@ -83,15 +117,33 @@ std::optional<SlotHit> kernel_closest(const LeafData<M>& q,
                                       Rayf& ray,
                                       const RayDataOf<M>& rd) {
     if constexpr (!LeafKernel<M>::simd) {
-        // The generic kernel: the slots in order, inlined into the traversal that calls it. (A
-        // lane-parallel version, a group of slots tested with one window and re-tested after a
-        // hit, measured 6-24 % slower on bvh8; see docs/architecture.md.)
+        // The generic kernel, inlined into the traversal that calls it: the slots in order, or,
+        // for a method with a lane form, the candidates of its lane test in order.
         std::optional<SlotHit> best;
-        for (std::uint32_t s = first; s < first + count; ++s) {
+        const auto test = [&](std::uint32_t s) {
             if (const auto h = intersect_with<M>(q.prims[s], ray, rd)) {
                 ray.tmax = h->t;
                 best = SlotHit{s, *h};
             }
+            return false;
+        };
+        if constexpr (LaneMethod<M>) {
+            if (lane_leaf(count)) {
+                // A lane's hit is the scalar test's with the group's window; a window shrunk
+                // since then keeps it exactly when its t is still inside (LaneMethod).
+                const auto take = [&](std::uint32_t s, const LaneHit<FloatLanes>& h, unsigned k) {
+                    if (h.t[k] <= ray.tmax) {
+                        ray.tmax = h.t[k];
+                        best = SlotHit{s, PrimHit<float>{h.t[k], h.u[k], h.v[k]}};
+                    }
+                    return false;
+                };
+                lane_candidates(q, first, count, ray, rd, take);
+                return best;
+            }
+        }
+        for (std::uint32_t s = first; s < first + count; ++s) {
+            test(s);
         }
         return best;
     } else {
@@ -116,8 +168,17 @@ std::optional<std::uint32_t> kernel_any(const LeafData<M>& q,
                                         const Rayf& ray,
                                         const RayDataOf<M>& rd) {
     if constexpr (!LeafKernel<M>::simd) {
+        const auto test = [&](std::uint32_t s) { return occluded_with<M>(q.prims[s], ray, rd); };
+        if constexpr (LaneMethod<M>) {
+            if (lane_leaf(count)) {
+                const auto first_hit = [](std::uint32_t, const LaneHit<FloatLanes>&, unsigned) {
+                    return true;
+                };
+                return lane_candidates(q, first, count, ray, rd, first_hit);
+            }
+        }
         for (std::uint32_t s = first; s < first + count; ++s) {
-            if (occluded_with<M>(q.prims[s], ray, rd)) {
+            if (test(s)) {
                 return s;
             }
         }

@@ -6,6 +6,8 @@
 
 #include "accel/accel.h"
 #include "base/large_pages.h"
+#include "intersect/lanes.h"
+#include "intersect/method.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -13,12 +15,26 @@
 
 namespace rtlab {
 
+namespace detail {
+struct NoLanes {};
+template <class M>
+struct LanesOf {
+    using type = NoLanes;
+};
+template <LaneMethod M>
+struct LanesOf<M> {
+    using type = typename M::Lanes;
+};
+}  // namespace detail
+
 /// M's prepared primitives by slot and the id of each slot (the caller's, e.g. a global
-/// primitive id).
+/// primitive id); for a LaneMethod also in lane groups, slot s in lane s % lane_count of group
+/// s / lane_count.
 template <class M>
 struct SlotPrims {
-    LargeVector<typename M::Prepared> prims;  ///< slot s's primitive
-    LargeVector<std::uint32_t> ids;           ///< slot s's id
+    LargeVector<typename M::Prepared> prims;               ///< slot s's primitive
+    LargeVector<std::uint32_t> ids;                        ///< slot s's id
+    LargeVector<typename detail::LanesOf<M>::type> lanes;  ///< LaneMethod: the lane groups
 
     /// Number of slots.
     std::uint32_t size() const { return static_cast<std::uint32_t>(prims.size()); }
@@ -26,7 +42,8 @@ struct SlotPrims {
     std::uint32_t id(std::uint32_t s) const { return ids[s]; }
     /// Bytes of the primitives and ids.
     std::size_t bytes() const {
-        return prims.size() * sizeof(typename M::Prepared) + ids.size() * sizeof(std::uint32_t);
+        return prims.size() * sizeof(typename M::Prepared) + ids.size() * sizeof(std::uint32_t) +
+               (LaneMethod<M> ? lanes.size() * sizeof(typename detail::LanesOf<M>::type) : 0);
     }
 };
 
@@ -44,6 +61,12 @@ SlotPrims<M> make_slot_prims(std::span<const typename M::Prepared> prims,
         const std::uint32_t i = id == padding_slot ? slot_ids.front() : id;
         q.prims.push_back(prims[i]);
         q.ids.push_back(ids.empty() ? i : ids[i]);
+    }
+    if constexpr (LaneMethod<M>) {
+        q.lanes.resize((q.prims.size() + lane_count - 1) / lane_count);
+        for (std::size_t s = 0; s < q.prims.size(); ++s) {
+            M::set_lane(q.lanes[s / lane_count], static_cast<unsigned>(s % lane_count), q.prims[s]);
+        }
     }
     return q;
 }

@@ -16,7 +16,7 @@ namespace rtlab {
 
 /// Geometric method: vector to the centre, its projection on the ray, early rejects.
 template <class T>
-struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T> {
+struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T>, SphereLaneForm<T> {
     using SphereMethodBase<SphereGeometric<T>, T>::intersect;
     static constexpr std::string_view name = "geometric";
 
@@ -40,21 +40,34 @@ struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T> {
     static std::optional<PrimHit<T>> intersect(const PreparedSphere<T>& p,
                                                const Ray<T>& ray,
                                                const SphereRay<T>& rd) {
-        const Vec3<T> m = p.center - ray.org;
-        const T b = dot(m, ray.dir);
-        const T c = dot(m, m) - p.radius2;
+        const LaneHit<T> h = test<T>(p, ray, rd);
+        return h.hit ? std::optional(PrimHit<T>{h.t}) : std::nullopt;
+    }
+
+    /// intersect on one sphere (L = T, P = PreparedSphere) or on lanes (L = FloatLanes, P =
+    /// Lanes).
+    template <class L, class P>
+    static LaneHit<L> test(const P& p, const Ray<T>& ray, const SphereRay<T>& rd) {
+        SphereRoots<L> r;
+        const auto m = p.center - splat3<L>(ray.org);
+        const L b = dot(m, splat3<L>(ray.dir));
+        const L c = dot(m, m) - p.radius2;
         // Early out of the seed: origin outside and the centre behind means both roots are < 0;
         // only valid when the window starts at or after the origin.
-        if (c >= T(0) && b <= T(0) && ray.tmin >= T(0)) {
-            return std::nullopt;
+        r.ok = ray.tmin >= T(0) ? lane_not((c >= T(0)) & (b <= T(0))) : all_set<L>();
+        if (none(r.ok)) {
+            return {};
         }
         const T a = rd.a;
-        const T disc = b * b - a * c;
-        if (disc < T(0)) {
-            return std::nullopt;
+        const L disc = b * b - a * c;
+        r.ok = r.ok & lane_not(disc < T(0));
+        if (none(r.ok)) {
+            return {};
         }
-        const T s = std::sqrt(disc);
-        return detail::pick_root(std::optional<std::pair<T, T>>{{(b - s) / a, (b + s) / a}}, ray);
+        const L s = lane_sqrt(disc);
+        r.near = (b - s) / a;
+        r.far = (b + s) / a;
+        return SphereLaneForm<T>::pick(r, ray);
     }
 };
 

@@ -3,6 +3,7 @@
 
 #include "intersect/bounds.h"
 #include "intersect/hit.h"
+#include "intersect/lanes.h"
 #include "intersect/method.h"
 #include "intersect/ray.h"
 
@@ -79,6 +80,46 @@ std::optional<PrimHit<T>> pick_root(const std::optional<std::pair<T, T>>& roots,
 }
 
 }  // namespace detail
+
+/// The two sorted roots of a line and a sphere, on one sphere (L = T) or on lanes: `ok` where the
+/// line meets it (the roots may still be NaN there, as the scalar formulas give them).
+template <class L>
+struct SphereRoots {
+    MaskOf<L> ok{};
+    L near{}, far{};
+};
+
+/// The lane form of sphere methods written once over their scalar (intersect/lanes.h): lanes of
+/// prepared spheres, and pick_root lane by lane.
+template <class T>
+struct SphereLaneForm {
+    /// lane_count prepared spheres, lane k holding one.
+    struct Lanes {
+        Vec3Lanes center;
+        FloatLanes radius{}, radius2{};
+    };
+    /// Stores p in lane k of g.
+    static void set_lane(Lanes& g, unsigned k, const PreparedSphere<T>& p) {
+        rtlab::set_lane(g.center, k, p.center);
+        g.radius[k] = p.radius;
+        g.radius2[k] = p.radius2;
+    }
+    /// detail::pick_root on lanes or one sphere: the nearer root in [tmin, tmax], else the
+    /// farther one.
+    template <class L>
+    static LaneHit<L> pick(const SphereRoots<L>& r, const Ray<T>& ray) {
+        LaneHit<L> h;
+        const MaskOf<L> in_near = (r.near >= ray.tmin) & (r.near <= ray.tmax);
+        const MaskOf<L> in_far = (r.far >= ray.tmin) & (r.far <= ray.tmax);
+        h.hit = r.ok & (in_near | in_far);
+        h.t = in_near ? r.near : r.far;
+        return h;
+    }
+    /// The scalar roots of a lane-form roots function's answer for one sphere.
+    static std::optional<std::pair<T, T>> scalar(const SphereRoots<T>& r) {
+        return r.ok ? std::optional(std::pair<T, T>{r.near, r.far}) : std::nullopt;
+    }
+};
 
 /// What every sphere method shares (derive from it, CRTP): the family's types, prepare_sphere,
 /// sphere_bounds, the per-ray set-up a = dir . dir (SphereRay), and intersect as the nearest root

@@ -4,11 +4,13 @@
 // precomputed). Epsilon: none (n.dir == 0 misses, edges inclusive). Cost: 2 dot, 1 div, 6 madd.
 
 #include "intersect/hit.h"
+#include "intersect/lanes.h"
 #include "intersect/method.h"
 #include "intersect/ray.h"
 #include "intersect/triangle/triangle.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -21,16 +23,23 @@ struct Badouel : MethodDefaults<Badouel<T>> {
     using Shape = Triangle<T>;
 
     /// Plane n.x = d (n unnormalised, zero for a degenerate triangle), p0 projected onto the
-    /// kept axes i1, i2, and the rows of the inverse 2x2 map from projected offsets to (u, v).
-    struct Prepared {
-        Vec3<T> n;
-        T d;
-        T p0_i1, p0_i2;
-        T u_i1, u_i2;  ///< u = u_i1 * (x[i1] - p0[i1]) + u_i2 * (x[i2] - p0[i2])
-        T v_i1, v_i2;  ///< v = v_i1 * (x[i1] - p0[i1]) + v_i2 * (x[i2] - p0[i2])
-        std::uint8_t i1, i2;
+    /// kept axes i1, i2, and the rows of the inverse 2x2 map from projected offsets to (u, v); in
+    /// scalars S with axis indices I (one triangle), or in lanes (lane_count triangles).
+    template <class S, class Vec, class I>
+    struct Form {
+        Vec n;
+        S d;
+        S p0_i1, p0_i2;
+        S u_i1, u_i2;  ///< u = u_i1 * (x[i1] - p0[i1]) + u_i2 * (x[i2] - p0[i2])
+        S v_i1, v_i2;  ///< v = v_i1 * (x[i1] - p0[i1]) + v_i2 * (x[i2] - p0[i2])
+        I i1, i2;
+    };
+    /// One triangle's form and its box.
+    struct Prepared : Form<T, Vec3<T>, std::uint8_t> {
         Bounds3<T> box;
     };
+    /// lane_count triangles' forms, lane k holding one (set_lane).
+    using Lanes = Form<FloatLanes, Vec3Lanes, MaskLanes>;
 
     static constexpr std::string_view name = "badouel";
 
@@ -68,27 +77,55 @@ struct Badouel : MethodDefaults<Badouel<T>> {
 
     /// Hit with t in [ray.tmin, ray.tmax] and barycentrics u (p1), v (p2), or nullopt.
     static std::optional<PrimHit<T>> intersect(const Prepared& p, const Ray<T>& ray) {
+        const LaneHit<T> h = test<T>(p, ray);
+        return h.hit ? std::optional(PrimHit<T>{h.t, h.u, h.v}) : std::nullopt;
+    }
+
+    /// The test on one triangle (L = T, P = Prepared) or on lanes (L = FloatLanes, P = Lanes).
+    template <class L, class P>
+    static LaneHit<L> test(const P& p, const Ray<T>& ray) {
+        LaneHit<L> h;
+        const auto org = splat3<L>(ray.org);
+        const auto dir = splat3<L>(ray.dir);
         // Ray-plane distance.
-        const T ndir = dot(p.n, ray.dir);
-        if (ndir == T(0)) {
-            return std::nullopt;
+        const L ndir = dot(p.n, dir);
+        MaskOf<L> ok = ndir != T(0);
+        if (none(ok)) {
+            return h;
         }
-        const T t = (p.d - dot(p.n, ray.org)) / ndir;
-        if (!in_window(t, ray)) {
-            return std::nullopt;
+        const L t = (p.d - dot(p.n, org)) / ndir;
+        ok = ok & (t >= ray.tmin) & (t <= ray.tmax) & (t <= std::numeric_limits<T>::max());
+        if (none(ok)) {
+            return h;
         }
         // 2D barycentrics of the projected hit point.
-        const T a = ray.org[p.i1] + t * ray.dir[p.i1] - p.p0_i1;
-        const T b = ray.org[p.i2] + t * ray.dir[p.i2] - p.p0_i2;
-        const T u = p.u_i1 * a + p.u_i2 * b;
-        if (!(u >= T(0) && u <= T(1))) {
-            return std::nullopt;
+        const L a = pick(org, p.i1) + t * pick(dir, p.i1) - p.p0_i1;
+        const L b = pick(org, p.i2) + t * pick(dir, p.i2) - p.p0_i2;
+        const L u = p.u_i1 * a + p.u_i2 * b;
+        ok = ok & (u >= T(0)) & (u <= T(1));
+        if (none(ok)) {
+            return h;
         }
-        const T v = p.v_i1 * a + p.v_i2 * b;
-        if (!(v >= T(0) && u + v <= T(1))) {
-            return std::nullopt;
-        }
-        return PrimHit<T>{t, u, v};
+        const L v = p.v_i1 * a + p.v_i2 * b;
+        h.hit = ok & (v >= T(0)) & (u + v <= T(1));
+        h.t = t;
+        h.u = u;
+        h.v = v;
+        return h;
+    }
+
+    /// Stores p in lane k of g (a float method only).
+    static void set_lane(Lanes& g, unsigned k, const Prepared& p) {
+        rtlab::set_lane(g.n, k, p.n);
+        g.d[k] = p.d;
+        g.p0_i1[k] = p.p0_i1;
+        g.p0_i2[k] = p.p0_i2;
+        g.u_i1[k] = p.u_i1;
+        g.u_i2[k] = p.u_i2;
+        g.v_i1[k] = p.v_i1;
+        g.v_i2[k] = p.v_i2;
+        g.i1[k] = p.i1;
+        g.i2[k] = p.i2;
     }
 };
 
