@@ -121,6 +121,11 @@ inline FloatLanes dot(const Vec3Lanes& a, const Vec3Lanes& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
+/// Lane-wise cross product, in Vec3's order of operations.
+inline Vec3Lanes cross(const Vec3Lanes& a, const Vec3Lanes& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
 /// Component i of v (an axis index per lane for lanes).
 template <class T>
 inline T pick(const Vec3<T>& v, std::size_t i) {
@@ -145,23 +150,36 @@ struct LaneHit {
     L t{}, u{}, v{};
 };
 
-/// A float method written once over its scalar (see the file comment): `Lanes` holds lane_count
-/// prepared primitives, set_lane(lanes, k, prepared) stores one in lane k, and test<FloatLanes>
-/// tests a ray against all of them, each lane exactly as test<float> on its primitive. Its
+/// A float method with lanes (see the file comment): `Lanes` holds lane_count prepared primitives
+/// and set_lane(lanes, k, prepared) stores one in lane k.
+template <class M>
+concept HasLanes = std::same_as<typename M::Scalar, float> &&
+    requires(typename M::Lanes& g, const typename M::Prepared& p) {
+    M::set_lane(g, 0u, p);
+};
+
+/// A float method written once over its scalar (see the file comment): test<FloatLanes> tests a
+/// ray against all lanes' primitives, each lane exactly as test<float> on its primitive. Its
 /// occluded() is the default (a hit of intersect()), and its window only clips the t it reports:
 /// a hit with t stays that hit for any window that still holds t, so a leaf kernel may keep a
 /// lane's hit after a closer one shrank the window, by comparing t alone.
 template <class M>
-concept LaneMethod = std::same_as<typename M::Scalar, float> &&
-    requires(typename M::Lanes& g, const typename M::Prepared& p, const Ray<float>& r) {
-    M::set_lane(g, 0u, p);
-} &&(
+concept LaneMethod = HasLanes<M> &&(
     requires(const typename M::Lanes& g, const Ray<float>& r) {
         { M::template test<FloatLanes>(g, r) } -> std::same_as<LaneHit<FloatLanes>>;
     } ||
     requires(const typename M::Lanes& g, const Ray<float>& r, const RayDataOf<M>& d) {
         { M::template test<FloatLanes>(g, r, d) } -> std::same_as<LaneHit<FloatLanes>>;
     });
+
+/// An occlusion-only float method written once over its scalar: occludes<FloatLanes> tells which
+/// lanes' primitives a ray meets in its window, each lane exactly as occludes<float> (its
+/// occluded()) on its primitive.
+template <class M>
+concept LaneOcclusionMethod = HasLanes<M> &&
+    requires(const typename M::Lanes& g, const Ray<float>& r) {
+    { M::template occludes<FloatLanes>(g, r) } -> std::same_as<MaskLanes>;
+};
 
 /// M's lane test of g for ray r with its per-ray set-up d (precompute_ray<M>).
 template <LaneMethod M>
@@ -172,6 +190,18 @@ LaneHit<FloatLanes> lane_test(const typename M::Lanes& g,
         return M::template test<FloatLanes>(g, r, d);
     } else {
         return M::template test<FloatLanes>(g, r);
+    }
+}
+
+/// The lanes of g whose primitive ray r meets in its window, d its set-up (precompute_ray<M>): a
+/// LaneMethod's hits, or a LaneOcclusionMethod's answer.
+template <HasLanes M>
+MaskLanes lane_occluded(const typename M::Lanes& g, const Ray<float>& r, const RayDataOf<M>& d) {
+    if constexpr (LaneMethod<M>) {
+        return lane_test<M>(g, r, d).hit;
+    } else {
+        static_assert(LaneOcclusionMethod<M>, "a method with lanes tests them (intersect/lanes.h)");
+        return M::template occludes<FloatLanes>(g, r);
     }
 }
 

@@ -1,7 +1,7 @@
 // Methods written once over their scalar (intersect/lanes.h): every lane of a lane test reports
 // exactly what the scalar test reports on that lane's primitive (hit or miss, and t, u, v bit for
-// bit on a hit), on random triangles, degenerate ones, and rays aimed at vertices, edges and
-// centres, along the axes and with short windows.
+// bit on a hit; hit or miss for an occlusion-only method), on random triangles, degenerate ones,
+// and rays aimed at vertices, edges and centres, along the axes and with short windows.
 #include "base/sampler.h"
 #include "intersect/lanes.h"
 #include "intersect/sphere/methods.h"
@@ -119,6 +119,31 @@ void check_lanes(const std::vector<Shape>& shapes, const std::vector<Rayf>& rs) 
     CHECK(hits > shapes.size());  // the sets reach the hit path, not only the early outs
 }
 
+/// For an occlusion-only method: every lane's answer is the scalar occluded() on its primitive.
+template <class M, class Shape>
+void check_occlusion_lanes(const std::vector<Shape>& shapes, const std::vector<Rayf>& rs) {
+    std::size_t hits = 0;
+    for (std::size_t b = 0; b + lane_count <= shapes.size(); b += lane_count) {
+        typename M::Lanes g{};
+        std::vector<typename M::Prepared> p;
+        for (unsigned k = 0; k < lane_count; ++k) {
+            p.push_back(M::prepare(shapes[b + k]));
+            M::set_lane(g, k, p.back());
+        }
+        for (const Rayf& r : rs) {
+            const MaskLanes l = lane_occluded<M>(g, r, precompute_ray<M>(r));
+            for (unsigned k = 0; k < lane_count; ++k) {
+                CAPTURE(M::name, b, k, r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z,
+                        r.tmax);
+                const bool one = M::occluded(p[k], r);
+                REQUIRE((l[k] != 0) == one);
+                hits += one ? 1 : 0;
+            }
+        }
+    }
+    CHECK(hits > shapes.size());
+}
+
 }  // namespace
 
 TEST_CASE("a method's lane test answers as its scalar test in every lane", "[lanes][methods]") {
@@ -130,6 +155,9 @@ TEST_CASE("a method's lane test answers as its scalar test in every lane", "[lan
         if constexpr (LaneMethod<M>) {
             check_lanes<M>(tris, rs);
             ++lane_methods;
+        } else if constexpr (LaneOcclusionMethod<M>) {
+            check_occlusion_lanes<M>(tris, rs);
+            ++lane_methods;
         }
     });
     const std::vector<Spheref> balls = spheres(s, 64);
@@ -140,5 +168,5 @@ TEST_CASE("a method's lane test answers as its scalar test in every lane", "[lan
             ++lane_methods;
         }
     });
-    CHECK(lane_methods >= 3);  // Badouel, the geometric and the algebraic sphere tests
+    CHECK(lane_methods >= 4);  // Badouel, Segura–Feito, the geometric and algebraic sphere tests
 }

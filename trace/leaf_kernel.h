@@ -70,10 +70,32 @@ struct LeafKernel<SphereStable<float>> {
     }
 };
 
-/// Whether the generic kernel tests a leaf of `count` slots of a LaneMethod by its lane test: when
-/// it fills at least half a lane group (below that, slot by slot measured faster on kd-trees).
+/// Whether the generic kernel tests a leaf of `count` slots of a method with lanes by its lane
+/// test: when it fills at least half a lane group (below that, slot by slot measured faster on
+/// kd-trees).
 inline bool lane_leaf(std::uint32_t count) {
     return 2 * count >= lane_count;
+}
+
+/// For a method with lanes: calls visit(group, base, bits) for each lane group of q holding slots
+/// of [first, first + count), in order, lane k of the group being slot base + k and bits its
+/// lanes inside that range, and returns the first slot it returns (nullopt if none).
+template <class M, class Visit>
+std::optional<std::uint32_t> for_lane_groups(const SlotPrims<M>& q,
+                                             std::uint32_t first,
+                                             std::uint32_t count,
+                                             const Visit& visit) {
+    const std::uint32_t end = first + count;
+    for (std::uint32_t base = first / lane_count * lane_count; base < end; base += lane_count) {
+        const std::uint32_t lo = first > base ? first - base : 0;
+        const std::uint32_t hi = std::min(end - base, lane_count);
+        const unsigned in_leaf = ((1u << hi) - 1u) & ~((1u << lo) - 1u);
+        if (const std::optional<std::uint32_t> s =
+                visit(q.lanes[base / lane_count], base, in_leaf)) {
+            return s;
+        }
+    }
+    return std::nullopt;
 }
 
 /// For a LaneMethod M: calls decide(s, hits, k) for the slots s of [first, first + count) whose
@@ -86,20 +108,18 @@ std::optional<std::uint32_t> lane_candidates(const SlotPrims<M>& q,
                                              const Rayf& ray,
                                              const RayDataOf<M>& rd,
                                              const Decide& decide) {
-    const std::uint32_t end = first + count;
-    for (std::uint32_t base = first / lane_count * lane_count; base < end; base += lane_count) {
-        const std::uint32_t lo = first > base ? first - base : 0;
-        const std::uint32_t hi = std::min(end - base, lane_count);
-        const unsigned in_leaf = ((1u << hi) - 1u) & ~((1u << lo) - 1u);
-        const LaneHit<FloatLanes> hits = lane_test<M>(q.lanes[base / lane_count], ray, rd);
+    const auto group = [&](const typename M::Lanes& g, std::uint32_t base,
+                           unsigned in_leaf) -> std::optional<std::uint32_t> {
+        const LaneHit<FloatLanes> hits = lane_test<M>(g, ray, rd);
         for (unsigned m = in_leaf & lane_bits(hits.hit); m != 0; m &= m - 1) {
             const auto k = static_cast<unsigned>(std::countr_zero(m));
             if (decide(base + k, hits, k)) {
                 return base + k;
             }
         }
-    }
-    return std::nullopt;
+        return std::nullopt;
+    };
+    return for_lane_groups(q, first, count, group);
 }
 
 /// The leaf data of M's kernel.
@@ -169,12 +189,17 @@ std::optional<std::uint32_t> kernel_any(const LeafData<M>& q,
                                         const RayDataOf<M>& rd) {
     if constexpr (!LeafKernel<M>::simd) {
         const auto test = [&](std::uint32_t s) { return occluded_with<M>(q.prims[s], ray, rd); };
-        if constexpr (LaneMethod<M>) {
+        if constexpr (HasLanes<M>) {
             if (lane_leaf(count)) {
-                const auto first_hit = [](std::uint32_t, const LaneHit<FloatLanes>&, unsigned) {
-                    return true;
+                const auto group = [&](const typename M::Lanes& g, std::uint32_t base,
+                                       unsigned in_leaf) -> std::optional<std::uint32_t> {
+                    const unsigned m = in_leaf & lane_bits(lane_occluded<M>(g, ray, rd));
+                    if (m == 0) {
+                        return std::nullopt;
+                    }
+                    return base + static_cast<std::uint32_t>(std::countr_zero(m));
                 };
-                return lane_candidates(q, first, count, ray, rd, first_hit);
+                return for_lane_groups(q, first, count, group);
             }
         }
         for (std::uint32_t s = first; s < first + count; ++s) {

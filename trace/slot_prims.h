@@ -21,20 +21,20 @@ template <class M>
 struct LanesOf {
     using type = NoLanes;
 };
-template <LaneMethod M>
+template <HasLanes M>
 struct LanesOf<M> {
     using type = typename M::Lanes;
 };
 }  // namespace detail
 
 /// M's prepared primitives by slot and the id of each slot (the caller's, e.g. a global
-/// primitive id); for a LaneMethod also in lane groups, slot s in lane s % lane_count of group
-/// s / lane_count.
+/// primitive id); for a method with lanes also in lane groups, slot s in lane s % lane_count of
+/// group s / lane_count.
 template <class M>
 struct SlotPrims {
     LargeVector<typename M::Prepared> prims;               ///< slot s's primitive
     LargeVector<std::uint32_t> ids;                        ///< slot s's id
-    LargeVector<typename detail::LanesOf<M>::type> lanes;  ///< LaneMethod: the lane groups
+    LargeVector<typename detail::LanesOf<M>::type> lanes;  ///< HasLanes: the lane groups
 
     /// Number of slots.
     std::uint32_t size() const { return static_cast<std::uint32_t>(prims.size()); }
@@ -43,7 +43,7 @@ struct SlotPrims {
     /// Bytes of the primitives and ids.
     std::size_t bytes() const {
         return prims.size() * sizeof(typename M::Prepared) + ids.size() * sizeof(std::uint32_t) +
-               (LaneMethod<M> ? lanes.size() * sizeof(typename detail::LanesOf<M>::type) : 0);
+               (HasLanes<M> ? lanes.size() * sizeof(typename detail::LanesOf<M>::type) : 0);
     }
 };
 
@@ -62,7 +62,7 @@ SlotPrims<M> make_slot_prims(std::span<const typename M::Prepared> prims,
         q.prims.push_back(prims[i]);
         q.ids.push_back(ids.empty() ? i : ids[i]);
     }
-    if constexpr (LaneMethod<M>) {
+    if constexpr (HasLanes<M>) {
         q.lanes.resize((q.prims.size() + lane_count - 1) / lane_count);
         for (std::size_t s = 0; s < q.prims.size(); ++s) {
             M::set_lane(q.lanes[s / lane_count], static_cast<unsigned>(s % lane_count), q.prims[s]);

@@ -48,7 +48,7 @@ struct SphereAlgebraic : SphereMethodBase<SphereAlgebraic<T>, T>, SphereLaneForm
     /// The nearest root in the window on lanes (and, through roots, on one sphere).
     template <class L, class P>
     static LaneHit<L> test(const P& p, const Ray<T>& ray, const SphereRay<T>& rd) {
-        return SphereLaneForm<T>::pick(roots_on<L>(p, ray, rd), ray);
+        return pick_root(roots_on<L>(p, ray, rd), ray);
     }
 };
 

@@ -24,16 +24,7 @@ struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T>, SphereLaneForm
     static std::optional<std::pair<T, T>> roots(const PreparedSphere<T>& p,
                                                 const Ray<T>& ray,
                                                 const SphereRay<T>& rd) {
-        const Vec3<T> m = p.center - ray.org;  // origin -> centre
-        const T a = rd.a;
-        const T b = dot(m, ray.dir);        // a * (projection of the centre on the ray)
-        const T c = dot(m, m) - p.radius2;  // > 0: origin outside
-        const T disc = b * b - a * c;       // a^2 * squared half chord
-        if (disc < T(0)) {
-            return std::nullopt;
-        }
-        const T s = std::sqrt(disc);
-        return std::pair<T, T>{(b - s) / a, (b + s) / a};
+        return SphereLaneForm<T>::scalar(roots_on<T>(p, ray, rd, false));
     }
 
     /// Nearest t in [tmin, tmax]; the leaving root when the origin is inside.
@@ -44,30 +35,39 @@ struct SphereGeometric : SphereMethodBase<SphereGeometric<T>, T>, SphereLaneForm
         return h.hit ? std::optional(PrimHit<T>{h.t}) : std::nullopt;
     }
 
-    /// intersect on one sphere (L = T, P = PreparedSphere) or on lanes (L = FloatLanes, P =
-    /// Lanes).
+    /// roots on one sphere (L = T, P = PreparedSphere) or on lanes (L = FloatLanes, P = Lanes);
+    /// with early_out, not where the seed's early out rejects (as test does).
     template <class L, class P>
-    static LaneHit<L> test(const P& p, const Ray<T>& ray, const SphereRay<T>& rd) {
+    static SphereRoots<L> roots_on(const P& p,
+                                   const Ray<T>& ray,
+                                   const SphereRay<T>& rd,
+                                   bool early_out) {
         SphereRoots<L> r;
-        const auto m = p.center - splat3<L>(ray.org);
-        const L b = dot(m, splat3<L>(ray.dir));
-        const L c = dot(m, m) - p.radius2;
+        const auto m = p.center - splat3<L>(ray.org);  // origin -> centre
+        const L b = dot(m, splat3<L>(ray.dir));        // a * (projection of the centre on the ray)
+        const L c = dot(m, m) - p.radius2;             // > 0: origin outside
         // Early out of the seed: origin outside and the centre behind means both roots are < 0;
         // only valid when the window starts at or after the origin.
-        r.ok = ray.tmin >= T(0) ? lane_not((c >= T(0)) & (b <= T(0))) : all_set<L>();
+        r.ok = early_out && ray.tmin >= T(0) ? lane_not((c >= T(0)) & (b <= T(0))) : all_set<L>();
         if (none(r.ok)) {
-            return {};
+            return r;
         }
         const T a = rd.a;
-        const L disc = b * b - a * c;
+        const L disc = b * b - a * c;  // a^2 * squared half chord
         r.ok = r.ok & lane_not(disc < T(0));
         if (none(r.ok)) {
-            return {};
+            return r;
         }
         const L s = lane_sqrt(disc);
         r.near = (b - s) / a;
         r.far = (b + s) / a;
-        return SphereLaneForm<T>::pick(r, ray);
+        return r;
+    }
+
+    /// intersect on one sphere or on lanes: the nearest root in the window, after the early out.
+    template <class L, class P>
+    static LaneHit<L> test(const P& p, const Ray<T>& ray, const SphereRay<T>& rd) {
+        return pick_root(roots_on<L>(p, ray, rd, true), ray);
     }
 };
 

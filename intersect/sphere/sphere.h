@@ -62,23 +62,6 @@ Bounds3<T> sphere_bounds(const PreparedSphere<T>& p) {
     return b;
 }
 
-/// The nearer of two sorted roots that lies in [tmin, tmax]; the leaving root when the entering
-/// one is before tmin (origin inside the sphere).
-template <class T>
-std::optional<PrimHit<T>> pick_root(const std::optional<std::pair<T, T>>& roots,
-                                    const Ray<T>& ray) {
-    if (!roots) {
-        return std::nullopt;
-    }
-    if (roots->first >= ray.tmin && roots->first <= ray.tmax) {
-        return PrimHit<T>{roots->first};
-    }
-    if (roots->second >= ray.tmin && roots->second <= ray.tmax) {
-        return PrimHit<T>{roots->second};
-    }
-    return std::nullopt;
-}
-
 }  // namespace detail
 
 /// The two sorted roots of a line and a sphere, on one sphere (L = T) or on lanes: `ok` where the
@@ -89,8 +72,35 @@ struct SphereRoots {
     L near{}, far{};
 };
 
+/// The hit of sorted roots r on one sphere or on lanes: the nearer root when it lies in [tmin,
+/// tmax], else the farther one when it does (the leaving root, origin inside the sphere).
+template <class L, class T>
+LaneHit<L> pick_root(const SphereRoots<L>& r, const Ray<T>& ray) {
+    LaneHit<L> h;
+    const MaskOf<L> in_near = (r.near >= ray.tmin) & (r.near <= ray.tmax);
+    const MaskOf<L> in_far = (r.far >= ray.tmin) & (r.far <= ray.tmax);
+    h.hit = r.ok & (in_near | in_far);
+    h.t = in_near ? r.near : r.far;
+    return h;
+}
+
+namespace detail {
+
+/// pick_root of a scalar roots function's answer.
+template <class T>
+std::optional<PrimHit<T>> pick_root(const std::optional<std::pair<T, T>>& roots,
+                                    const Ray<T>& ray) {
+    if (!roots) {
+        return std::nullopt;
+    }
+    const LaneHit<T> h = rtlab::pick_root(SphereRoots<T>{true, roots->first, roots->second}, ray);
+    return h.hit ? std::optional(PrimHit<T>{h.t}) : std::nullopt;
+}
+
+}  // namespace detail
+
 /// The lane form of sphere methods written once over their scalar (intersect/lanes.h): lanes of
-/// prepared spheres, and pick_root lane by lane.
+/// prepared spheres.
 template <class T>
 struct SphereLaneForm {
     /// lane_count prepared spheres, lane k holding one.
@@ -103,17 +113,6 @@ struct SphereLaneForm {
         rtlab::set_lane(g.center, k, p.center);
         g.radius[k] = p.radius;
         g.radius2[k] = p.radius2;
-    }
-    /// detail::pick_root on lanes or one sphere: the nearer root in [tmin, tmax], else the
-    /// farther one.
-    template <class L>
-    static LaneHit<L> pick(const SphereRoots<L>& r, const Ray<T>& ray) {
-        LaneHit<L> h;
-        const MaskOf<L> in_near = (r.near >= ray.tmin) & (r.near <= ray.tmax);
-        const MaskOf<L> in_far = (r.far >= ray.tmin) & (r.far <= ray.tmax);
-        h.hit = r.ok & (in_near | in_far);
-        h.t = in_near ? r.near : r.far;
-        return h;
     }
     /// The scalar roots of a lane-form roots function's answer for one sphere.
     static std::optional<std::pair<T, T>> scalar(const SphereRoots<T>& r) {
