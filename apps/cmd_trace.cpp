@@ -35,6 +35,7 @@ struct TraceArgs {
     bool warmup = true;
     bool stats = false;
     bool robust = false;
+    bool exact = false;
     bool leaf_time = false;
 };
 
@@ -50,7 +51,8 @@ int run_trace(const TraceArgs& a) {
     }
     const Scene scene = load_scene(a.scene);
     const std::vector<Rayf> rays = load_rays(a.rays);
-    const TraceSetup setup = checked_setup(accel, a.method, a.robust);
+    TraceSetup setup = checked_setup(accel, a.method, a.robust);
+    setup.exact = a.exact;
     const SceneTracer tracer(scene, setup);
     check_methods_used(tracer, setup.methods, "trace");
 
@@ -74,11 +76,21 @@ int run_trace(const TraceArgs& a) {
     j["method"] = methods;
     j["sets"] = tracer.set_methods();
     j["query"] = a.any_hit ? "any_hit" : "closest_hit";
-    j["robust"] = a.robust;
+    j["robust"] = a.robust || a.exact;
+    j["exact"] = a.exact;
     j["threads"] = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
     j["repeat"] = a.repeat;
     j["warmup"] = a.warmup;
     write_measurement(j, m);
+    if (a.exact && a.stats) {
+        const ExactCounts c = tracer.exact_counts(rays, a.any_hit);
+        j["exact_tests"] = c.tests;
+        j["exact_fallbacks"] = c.fallbacks;
+        j["fallback_rays"] = c.fallback_rays;
+        j["fallback_rays_per_million"] =
+            c.rays > 0 ? 1e6 * static_cast<double>(c.fallback_rays) / static_cast<double>(c.rays)
+                       : 0.0;
+    }
     if (!a.hits.empty()) {
         save_hits(a.hits, hits);
     }
@@ -109,10 +121,11 @@ Command add_trace(CLI::App& root) {
     for (const MethodFamily& f : method_families()) {
         defaults += (defaults.empty() ? "" : ", ") + std::string(f.methods.front());
     }
-    sub->add_option("--method", a->method,
-                    "Intersection method(s), comma-separated, one per primitive family "
-                    "(defaults: " +
-                        defaults + "; all: rtlab list)");
+    CLI::Option* method =
+        sub->add_option("--method", a->method,
+                        "Intersection method(s), comma-separated, one per primitive family "
+                        "(defaults: " +
+                            defaults + "; all: rtlab list)");
     sub->add_flag("--any-hit", a->any_hit, "Any-hit (occlusion) queries instead of closest hit");
     sub->add_option("--hits", a->hits,
                     "Write hits: per ray float32 t (+inf miss; 0 occluded with --any-hit), "
@@ -131,6 +144,12 @@ Command add_trace(CLI::App& root) {
                   "(measured_cost) and, for BVHs over triangles, the end-point overlap (epo); see "
                   "docs/architecture.md");
     sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
+    sub->add_flag("--exact", a->exact,
+                  "Certified hits of triangle meshes: robust traversal, the exact ray/triangle "
+                  "test (double with error bounds, exact arithmetic where they cannot decide), "
+                  "exact ties to the lowest primitive id; with --stats also exact_tests, "
+                  "exact_fallbacks, fallback_rays and fallback_rays_per_million")
+        ->excludes(method);
     sub->add_flag("--leaf-time", a->leaf_time,
                   "Also time the traversal alone (--repeat runs, each ray's window ending at its "
                   "hit, leaves offered but not tested): traverse_ms, and leaf_share = 1 - "

@@ -187,13 +187,82 @@ SceneTracer::SceneTracer(const Scene& scene, const TraceSetup& setup)
     if constexpr (requires { std::get<ShapeBucket<Trianglef>>(buckets.all); }) {
         triangles_ = std::get<ShapeBucket<Trianglef>>(buckets.all).shapes;
     }
-    const bool slots = slot_ordered_leaves(accel_spec_);
+    const bool slots = slot_ordered_leaves(accel_spec_) && !setup.exact;
     SetAdder add{setup, accel_spec_, slots, sets_, set_methods_, build_ms_};
     std::apply(
         [&](auto&... b) {
             (add(b.shapes, std::move(b.ids), clip_for(b.shapes), extent_for(b.shapes)), ...);
         },
         buckets.all);
+    if (setup.exact) {
+        enter_exact(setup);
+    }
+}
+
+void SceneTracer::enter_exact(const TraceSetup& setup) {
+    if (!setup.methods.empty()) {
+        throw std::invalid_argument(
+            "exact mode tests triangles with the certified test only: a "
+            "method (" +
+            setup.methods.front() + ") would have no effect");
+    }
+    for (const std::string& label : set_methods_) {
+        if (!label.starts_with("triangle=")) {
+            throw std::invalid_argument(
+                "exact mode certifies triangle hits only, and the scene "
+                "holds " +
+                label.substr(0, label.find('=')) + " primitives");
+        }
+    }
+    for (const AnyPrimSet& s : sets_) {
+        const AnyAccel& a =
+            std::visit([](const auto& set) -> const AnyAccel& { return set.accel; }, s);
+        if (const std::optional<std::string> why = exact_refusal(a)) {
+            throw std::invalid_argument("exact mode: " + accel_spec_.canonical() + " " + *why);
+        }
+    }
+    exact_ = true;
+    robust_ = true;
+    if (slot_ordered_leaves(accel_spec_) && !sets_.empty()) {
+        const auto [tris, a] = exact_set();
+        exact_slots_ = exact_slots(*a, tris.tris, tris.ids);
+    }
+    for (std::string& label : set_methods_) {
+        label = "triangle=exact";
+    }
+}
+
+std::pair<ExactTriangles, const AnyAccel*> SceneTracer::exact_set() const {
+    if (sets_.empty()) {
+        return {ExactTriangles{}, nullptr};
+    }
+    return std::visit(
+        [&](const auto& set) {
+            return std::pair{
+                ExactTriangles{triangles_, set.ids, exact_slots_.first, exact_slots_.second},
+                &set.accel};
+        },
+        sets_.front());
+}
+
+ExactCounts SceneTracer::exact_counts(std::span<const Rayf> rays, bool any_hit) const {
+    if (!exact_) {
+        throw std::logic_error("exact_counts: not in exact mode");
+    }
+    ExactCounts c;
+    const auto [tris, a] = exact_set();
+    if (a == nullptr) {
+        c.rays = rays.size();
+        return c;
+    }
+    if (any_hit) {
+        std::vector<std::uint32_t> blocker(rays.size(), invalid_id);
+        exact_any(*a, tris, rays, blocker, nullptr, &c);
+    } else {
+        std::vector<Hit> hits(rays.size());
+        exact_closest(*a, tris, rays, hits, nullptr, &c);
+    }
+    return c;
 }
 
 std::vector<std::pair<CostEstimate, double>> SceneTracer::cost_figures(const CostParams& p,
@@ -220,6 +289,12 @@ std::vector<AccelInfo> SceneTracer::infos() const {
 }
 
 std::size_t SceneTracer::leaf_bytes() const {
+    if (exact_) {
+        // The triangles the certified test reads, in slot order where kept so, with their ids.
+        const std::size_t slots = exact_slots_.first.size();
+        const std::size_t n = slots > 0 ? slots : triangles_.size();
+        return n * (sizeof(Trianglef) + sizeof(std::uint32_t));
+    }
     std::size_t total = 0;
     for (const AnyPrimSet& s : sets_) {
         total += std::visit(
@@ -242,7 +317,11 @@ void SceneTracer::intersect(std::span<const Rayf> rays,
         throw std::invalid_argument("intersect: hits and rays differ in size");
     }
     std::fill(hits.begin(), hits.end(), Hit{});
-    if (stats != nullptr) {
+    if (exact_) {
+        if (const auto [tris, a] = exact_set(); a != nullptr) {
+            exact_closest(*a, tris, rays, hits, stats);
+        }
+    } else if (stats != nullptr) {
         batch::closest_counted(sets_, robust_, rays, hits, *stats);
     } else {
         batch::closest(sets_, robust_, rays, hits);
@@ -254,6 +333,9 @@ void SceneTracer::intersect_counted(std::span<const Rayf> rays,
                                     std::span<TraversalStats> per_ray) const {
     if (hits.size() != rays.size() || per_ray.size() != rays.size()) {
         throw std::invalid_argument("intersect_counted: hits, counts and rays differ in size");
+    }
+    if (exact_) {
+        throw std::invalid_argument("per-ray counts are not available in exact mode");
     }
     std::fill(hits.begin(), hits.end(), Hit{});
     batch::closest_per_ray(sets_, robust_, rays, hits, per_ray);
@@ -289,7 +371,11 @@ void SceneTracer::occluded(std::span<const Rayf> rays,
         throw std::invalid_argument("occluded: blockers and rays differ in size");
     }
     std::fill(blocker.begin(), blocker.end(), invalid_id);
-    if (stats != nullptr) {
+    if (exact_) {
+        if (const auto [tris, a] = exact_set(); a != nullptr) {
+            exact_any(*a, tris, rays, blocker, stats);
+        }
+    } else if (stats != nullptr) {
         batch::any_counted(sets_, robust_, rays, blocker, *stats);
     } else {
         batch::any(sets_, robust_, rays, blocker);

@@ -8,6 +8,7 @@
 #include "accel/cost_model.h"
 #include "intersect/hit.h"
 #include "scene/scene.h"
+#include "trace/exact_query.h"
 #include "trace/prim_sets.h"
 
 #include <cstdint>
@@ -25,6 +26,9 @@ struct TraceSetup {
     /// of their list (method_families()).
     std::vector<std::string> methods;
     bool robust = false;  ///< conservative box tests in traversal (Ize 2013)
+    /// Certified triangle hits (trace/exact_query.h): robust traversal, the exact test, exact ties
+    /// to the lowest id. For scenes of triangles only, with no method named.
+    bool exact = false;
 };
 
 /// A scene prepared for tracing. Build once, trace many batches.
@@ -36,14 +40,15 @@ public:
 
     /// Closest hit for every ray (hits[i] for rays[i]; a miss keeps prim == invalid_id and
     /// t = +inf). Throws std::invalid_argument when a set's method cannot report hit points
-    /// (segura_feito). Adds counts to *stats when given (a separate, slower code path).
+    /// (segura_feito). Adds counts to *stats when given (a separate, slower code path). In exact
+    /// mode, the certified closest hits.
     void intersect(std::span<const Rayf> rays,
                    std::span<Hit> hits,
                    TraversalStats* stats = nullptr) const;
 
     /// Closest hit for every ray as intersect(), also adding each ray's own traversal counts to
     /// per_ray[i] (nodes and primitive tests over all sets; rays = 1 per set traversed). For
-    /// per-pixel heat maps; slower than intersect().
+    /// per-pixel heat maps; slower than intersect(). Not in exact mode.
     void intersect_counted(std::span<const Rayf> rays,
                            std::span<Hit> hits,
                            std::span<TraversalStats> per_ray) const;
@@ -59,6 +64,12 @@ public:
                   std::span<std::uint32_t> blocker,
                   TraversalStats* stats = nullptr) const;
 
+    /// How often exact mode needed exact arithmetic on rays (closest hits, or any hits with
+    /// any_hit): one more pass. Throws std::logic_error outside exact mode.
+    ExactCounts exact_counts(std::span<const Rayf> rays, bool any_hit) const;
+    /// True in exact mode (TraceSetup::exact).
+    bool exact() const { return exact_; }
+
     /// The structure every set was built with; accel_spec().canonical() names all parameters.
     const AccelSpec& accel_spec() const { return accel_spec_; }
     /// Wall time of building all structures (not of preparing primitives), in milliseconds.
@@ -69,7 +80,8 @@ public:
     std::vector<AccelInfo> infos() const;
     /// Bytes of the primitive data traversal reads beside the structures, over all sets: a set's
     /// slot-ordered leaf data (trace/leaf_kernel.h; padding slots included) when it has them, else
-    /// its prepared primitives with the global id map.
+    /// its prepared primitives with the global id map; in exact mode, the triangles and ids the
+    /// certified test reads.
     std::size_t leaf_bytes() const;
     /// The one cost model's expected counts (accel/cost_model.h) of every set's structure, and
     /// with_epo the end-point overlap of a BVH over the triangle set (-1 for other sets and
@@ -87,8 +99,16 @@ private:
     AccelSpec accel_spec_;
     double build_ms_ = 0;
     bool robust_ = false;
+    bool exact_ = false;
     std::uint32_t prim_count_ = 0;
-    std::vector<Trianglef> triangles_;  ///< the triangle set's shapes, local order (for EPO)
+    std::vector<Trianglef> triangles_;  ///< the triangle set's shapes, local order (EPO, exact)
+    /// Exact mode with slot-ordered leaves: the triangles and global ids in leaf-slot order.
+    std::pair<std::vector<Trianglef>, std::vector<std::uint32_t>> exact_slots_;
+
+    /// Checks that exact mode can serve the scene and set-up, then switches to it.
+    void enter_exact(const TraceSetup& setup);
+    /// The exact query's triangles and the triangle set's structure (exact mode, one set).
+    std::pair<ExactTriangles, const AnyAccel*> exact_set() const;
 };
 
 }  // namespace rtlab

@@ -19,6 +19,16 @@ expect_ok "noop: list with an absent family" trace --scene "$noop/tri.obj" --ray
     --method watertight,geometric
 [[ $(wc -l <"$tmp/err") -eq 1 ]] && grep -q "ignored.*using triangle=watertight" "$tmp/err" ||
     { echo "FAIL (noop list): stderr:"; cat "$tmp/err"; fail=1; }
+# Exact mode certifies triangles with one test: other primitives and --method are refused.
+expect_error "exact: a scene of spheres" trace --scene "$noop/sphere.json" --rays "$noop/s.rays" \
+    --exact
+grep -q "certifies triangle hits only" "$tmp/err" ||
+    { echo "FAIL (exact spheres): $(cat "$tmp/err")"; fail=1; }
+expect_error "exact: with --method" trace --scene "$noop/tri.obj" --rays "$noop/t.rays" --exact \
+    --method watertight
+expect_ok "exact: triangles" trace --scene "$noop/tri.obj" --rays "$noop/t.rays" --exact --stats
+grep -q '"method":"exact"' "$tmp/out" && grep -q '"exact_fallbacks"' "$tmp/out" ||
+    { echo "FAIL (exact row): $(cat "$tmp/out")"; fail=1; }
 expect_error "noop: render --epsilon without --offset epsilon" render "$noop/sphere.json" \
     -o "$noop/x.png" --width 4 --height 4 --epsilon 0.01
 expect_error "noop: gen --tess without --as mesh" gen flake --size 1 --tess uv:8x4 -o "$noop/g.json"
