@@ -128,7 +128,9 @@ void check_kernel(const std::vector<Prepared>& prims, const std::vector<Rayf>& r
 
 TEST_CASE("triangle leaf kernels of every SIMD level equal the scalar methods bit for bit",
           "[trace][simd]") {
-    const auto seed = GENERATE(take(2, random(0u, 1u << 30)));
+    // Fixed seeds, so a run sees the same sets whatever shard it lands in, and one from the run's
+    // seed (printed on failure), so runs keep exploring.
+    const auto seed = GENERATE(1u, 2u, 3u, take(1, random(0u, 1u << 30)));
     const std::vector<Prepared> prims = test_triangles(seed);
     const std::vector<Rayf> rays = test_rays(seed);
     check_kernel<MollerTrumbore<float>>(prims, rays);
