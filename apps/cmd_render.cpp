@@ -57,6 +57,7 @@ struct RenderArgs {
     bool explain = false;
     bool all_features = false;
     bool robust = false;
+    bool exact = false;
     CLI::Option* width_opt = nullptr;
     CLI::Option* height_opt = nullptr;
     CLI::Option* depth_opt = nullptr;
@@ -137,6 +138,9 @@ void check_render_args(const RenderArgs& a) {
     }
     if (!a.stats_json.empty()) {
         check_output_path(a.stats_json);  // before the work, not after it
+    }
+    if (a.exact && a.aov == "heatmap") {
+        throw Error("render: --aov heatmap counts traversal per ray, which --exact does not");
     }
 }
 
@@ -243,6 +247,8 @@ nlohmann::json render_stats_json(const RenderArgs& a,
     j["output"] = a.output;
     j["accel"] = accel;
     j["sets"] = tracer.set_methods();
+    j["robust"] = a.robust || a.exact;
+    j["exact"] = a.exact;
     j["width"] = res.image.width;
     j["height"] = res.image.height;
     j["spp"] = rs.spd ? 4 : rs.spp;
@@ -290,7 +296,8 @@ int run_render(const RenderArgs& a) {
             return 0;
         }
     }
-    const TraceSetup setup = checked_setup(accel, a.method, a.robust);
+    TraceSetup setup = checked_setup(accel, a.method, a.robust);
+    setup.exact = a.exact;
     const SceneTracer tracer(scene, setup);
     check_methods_used(tracer, setup.methods, "render");
     load_image_writer(a.output);  // a missing OpenImageIO module fails before the render
@@ -326,9 +333,10 @@ Command add_render(CLI::App& root) {
     sub->add_option("--accel", a->accel,
                     "Structure spec NAME[,key=value]... (see rtlab list; default " +
                         std::string(default_accel) + ")");
-    sub->add_option("--method", a->method,
-                    "Intersection method(s), comma-separated, one per primitive family "
-                    "(implicit: closed_form, newton, laguerre; see rtlab list)");
+    CLI::Option* method =
+        sub->add_option("--method", a->method,
+                        "Intersection method(s), comma-separated, one per primitive family "
+                        "(implicit: closed_form, newton, laguerre; see rtlab list)");
     a->width_opt = sub->add_option("--width", a->width, "Image width (default: the camera's)")
                        ->check(CLI::Range(1, 16384));
     a->height_opt = sub->add_option("--height", a->height, "Image height (default: the camera's)")
@@ -381,6 +389,9 @@ Command add_render(CLI::App& root) {
     sub->add_flag("--all-features", a->all_features,
                   "Run the integrator with every feature compiled in (for comparisons)");
     sub->add_flag("--robust", a->robust, "Robust traversal: conservative box tests (Ize 2013)");
+    sub->add_flag("--exact", a->exact,
+                  "Certified hits for every ray of a triangle scene (see rtlab trace --exact)")
+        ->excludes(method);
     return {sub, [a] { return run_render(*a); }};
 }
 

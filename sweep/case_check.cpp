@@ -1,4 +1,5 @@
-// check_cases: every case's method list against the primitive families of its scene.
+// check_cases: every case's method list (and exact mode) against the primitive families of its
+// scene.
 #include "sweep/case_check.h"
 
 #include "base/error.h"
@@ -27,6 +28,13 @@ void check_cases(const SweepFile& s, const std::vector<Case>& cases, const std::
             } catch (const std::exception& e) {
                 throw Error(fmt::format("{}: scenes[{}]: {}", where, c.scene, e.what()));
             }
+        }
+        const auto other = [](std::string_view family) { return family != "triangle"; };
+        if (s.exact && std::any_of(f->begin(), f->end(), other)) {
+            throw Error(
+                fmt::format("{}: scenes[{}]: exact mode certifies triangle hits only, and "
+                            "scene '{}' holds {} primitives",
+                            where, c.scene, s.scenes[c.scene].label, fmt::join(*f, ", ")));
         }
         const MethodUse use = method_use(*f, split_commas(c.methods));
         if (use.unused.empty()) {

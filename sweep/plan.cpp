@@ -112,11 +112,13 @@ std::vector<Case> expand_cases(const SweepFile& s) {
                         c.methods = m;
                         c.threads = t;
                         c.kind = kind;
+                        // exact=true only when set, so other sweeps keep their case ids.
                         add_case(std::move(c),
                                  fmt::format("{}|{}|{}|{}|{}|rays={},seed={},repeat={},warmup={},"
-                                             "stats={},robust={}",
+                                             "stats={},robust={}{}",
                                              s.scenes[sc].key, spec, m, t, kind, s.ray_count,
-                                             s.seed, s.repeat, s.warmup, s.stats, s.robust),
+                                             s.seed, s.repeat, s.warmup, s.stats, s.robust,
+                                             s.exact ? ",exact=true" : ""),
                                  out, seen);
                     }
                 }

@@ -109,6 +109,7 @@ void use_tracer(Workspace& w, const SweepFile& s, const Case& c, int threads) {
         setup.accel = parse_accel_spec(c.spec);
         setup.methods = split_commas(c.methods);
         setup.robust = s.robust;
+        setup.exact = s.exact;
         w.tracer = std::make_unique<SceneTracer>(*w.scene, setup);
         w.tracer_key = key;
     }

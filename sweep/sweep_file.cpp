@@ -21,9 +21,9 @@ namespace {
 
 using namespace detail;
 
-const std::set<std::string> top_keys{"name",   "seed",    "scenes",     "structures", "methods",
-                                     "rays",   "threads", "repeat",     "warmup",     "stats",
-                                     "robust", "renders", "crosscheck", "base_dir",   "comment"};
+const std::set<std::string> top_keys{
+    "name",   "seed",  "scenes", "structures", "methods", "rays",       "threads",  "repeat",
+    "warmup", "stats", "robust", "exact",      "renders", "crosscheck", "base_dir", "comment"};
 
 SceneSource parse_scene(const ojson& s,
                         const std::string& where,
@@ -259,7 +259,8 @@ void parse_sweep_axes(const ojson& j,
     }
 }
 
-/// The sweep's run options from j: threads, repeat, warm-up, stats, robust, renders, cross-checks.
+/// The sweep's run options from j: threads, repeat, warm-up, stats, robust, exact, renders,
+/// cross-checks.
 void parse_sweep_options(const ojson& j, const std::string& where, SweepFile& s) {
     const auto at = [&](const std::string& k) { return where + ": " + k; };
     if (j.contains("threads")) {
@@ -285,6 +286,27 @@ void parse_sweep_options(const ojson& j, const std::string& where, SweepFile& s)
     }
     if (j.contains("renders")) {
         s.renders = parse_renders(j["renders"], at("renders"), s);
+    }
+    if (j.contains("exact")) {
+        s.exact = get_bool(j["exact"], at("exact"));
+    }
+    if (s.exact) {
+        // Exact mode has one test and keeps no per-ray counts: what would not run is refused.
+        for (const std::string& m : s.methods) {
+            if (!m.empty()) {
+                fail(at("exact"),
+                     "runs the certified triangle test only; methods must be "
+                     "\"default\" (found \"" +
+                         m + "\")");
+            }
+        }
+        for (const RenderRows& r : s.renders) {
+            for (const std::string& aov : r.aovs) {
+                if (aov == "heatmap") {
+                    fail(at("exact"), "keeps no per-ray counts, so no heatmap render");
+                }
+            }
+        }
     }
     if (j.contains("crosscheck")) {
         s.crosschecks = parse_crosschecks(j["crosscheck"], at("crosscheck"));

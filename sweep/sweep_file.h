@@ -62,6 +62,7 @@ struct SweepFile {
     int warmup = 1;               ///< untimed runs before them
     bool stats = true;            ///< counting pass (nodes/ray, prims/ray)
     bool robust = false;          ///< conservative box tests in traversal
+    bool exact = false;           ///< certified triangle hits (rtlab trace --exact)
     std::vector<RenderRows> renders;
     std::vector<CrosscheckRows> crosschecks;
     /// The file as loaded (comments dropped) plus "base_dir", the folder scene files are

@@ -102,6 +102,23 @@ TEST_CASE("sweep files are validated before anything runs", "[sweep]") {
     CHECK_THROWS_AS(load_text(bad("\"scenes\"", "\"scenez\"")), Error);
     CHECK_THROWS_WITH(load_text(bad("\"bins\"", "\"binz\"")),
                       Catch::Contains("structures[0]") && Catch::Contains("binz"));
+    // Exact mode runs one test and keeps no per-ray counts: a named method is refused.
+    CHECK_THROWS_WITH(
+        load_text(bad("\"rays\"", "\"exact\": true, \"methods\": [\"watertight\"], \"rays\"")),
+        Catch::Contains("exact"));
+}
+
+TEST_CASE("an exact sweep gives its trace cases ids of their own, others keep theirs", "[sweep]") {
+    const std::vector<sweep::Case> plain = sweep::expand_cases(load_text(three_scenes));
+    std::string text = three_scenes;
+    text.replace(text.find("\"rays\""), 6, "\"exact\": true, \"rays\"");
+    const sweep::SweepFile exact = load_text(text);
+    CHECK(exact.exact);
+    const std::vector<sweep::Case> cases = sweep::expand_cases(exact);
+    REQUIRE(cases.size() == plain.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        CHECK(cases[i].id != plain[i].id);
+    }
 }
 
 TEST_CASE("sweep renders and cross-checks expand into their own cases", "[sweep]") {
@@ -196,4 +213,22 @@ TEST_CASE("sweep plans refuse a case naming a method its scene would not use", "
     CHECK_THROWS_WITH(
         plan(R"(["watertight,badouel"])"),
         Catch::Contains("methods[0]") && Catch::Contains("two methods of the triangle family"));
+}
+
+TEST_CASE("sweep plans refuse exact mode on a scene with other primitives than triangles",
+          "[sweep]") {
+    const test::TempDir dir("rtlab_sweep_plan_test_");
+    const auto plan = [&](const std::string& scenes) {
+        test::write_text(dir.path / "sweep.json", R"({
+            "scenes": )" + scenes + R"(,
+            "structures": ["bvh8"], "exact": true,
+            "rays": {"kinds": ["primary"], "count": 10}
+        })");
+        return sweep::plan_into(dir.path / "sweep.json", "", 0, false);
+    };
+    const std::string mesh = R"({"name": "m", "generator": "flake", "size": 1, "as": "mesh"})";
+    CHECK(plan("[" + mesh + "]").cases.size() == 1);
+    CHECK_THROWS_WITH(
+        plan("[" + mesh + R"(, {"name": "s", "generator": "flake", "size": 1}])"),
+        Catch::Contains("scenes[1]") && Catch::Contains("exact mode") && Catch::Contains("sphere"));
 }

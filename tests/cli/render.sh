@@ -11,6 +11,14 @@ grep -q '"heatmap"' "$tmp/r-stats.json" 2>/dev/null ||
 expect_ok "render explain only" render "$tmp/r.json" --explain
 grep -q "refraction *disabled" "$tmp/out" ||
     { echo "FAIL (render explain): refraction not reported disabled"; cat "$tmp/out"; fail=1; }
+expect_ok "render mesh scene" gen flake --size 1 --as mesh -o "$tmp/rm.json"
+expect_ok "render exact" render "$tmp/rm.json" -o "$tmp/exact.png" --width 8 --height 8 --exact \
+    --stats-json "$tmp/exact.json"
+grep -q '"triangle=exact"' "$tmp/exact.json" ||
+    { echo "FAIL (render exact): sets not triangle=exact"; fail=1; }
+expect_error "render exact spheres" render "$tmp/r.json" -o "$tmp/x.png" --width 8 --height 8 --exact
+expect_error "render exact heatmap" render "$tmp/rm.json" -o "$tmp/x.exr" --width 8 --height 8 \
+    --exact --aov heatmap
 expect_ok "render spd" render "$tmp/r.json" -o "$tmp/spd.png" --spd --width 8 --height 8
 mkdir -p "$tmp/blocker"
 echo "not a directory" >"$tmp/plainfile"
