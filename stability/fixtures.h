@@ -56,7 +56,7 @@ std::vector<Rayf> adversarial_rays(const TriangleMesh& mesh,
 
 /// Which subjects a case runs; the default is the whole matrix (what the report shows).
 struct Selection {
-    std::vector<std::string> methods;  ///< triangle method names; empty means every method
+    std::vector<std::string> methods;  ///< triangle method names or "exact"; empty: all of them
     bool plain = true;                 ///< run plain traversal
     bool robust = true;                ///< run robust traversal
     bool brute = true;                 ///< include the brute-force structure

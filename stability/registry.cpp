@@ -13,7 +13,8 @@ const Case all_cases[] = {
     {"watertight",
      "Rays from inside a closed, vertex-perturbed sphere mesh (random directions, exactly at "
      "vertices, at shared-edge points) must all hit: leaks per triangle method, structure and "
-     "traversal (float).",
+     "traversal (float), and per structure in exact mode (certified hits, which must also equal "
+     "exact brute force's).",
      &run_watertight},
     {"adversarial",
      "Rays that must all hit, generated to find each structure's weak spots: from the kernel of "
@@ -22,13 +23,14 @@ const Case all_cases[] = {
      "(kd split planes, grid cell boundaries, BVH box faces; inside, on edges, at corners), and "
      "starting on or one float beside such a plane, nearly or exactly parallel to it, and from "
      "10 to 1e4 radii away into the kernel: leaks per "
-     "triangle method, structure and traversal (float).",
+     "triangle method, structure and traversal (float), and per structure in exact mode.",
      &run_adversarial},
     {"intgrid",
      "Axis-aligned rays whose origins lie on the lattice lines of the intgrid mesh (closed cube "
      "[-4, 4]^3) pass exactly through shared edges, vertices and square diagonals; all must hit. "
      "On the lattice one of the two triangles at an edge computes its zero barycentric exactly, "
-     "so no method leaks here (unlike the perturbed sphere of the watertight case).",
+     "so no method leaks here (unlike the perturbed sphere of the watertight case); exact mode "
+     "per structure as well.",
      &run_intgrid},
     {"degenerate",
      "Axis-aligned and degenerate rays on the intgrid cube [-2, 2]^3: zero and denormal direction "

@@ -151,6 +151,21 @@ static std::size_t require_watertight_robust_tight(const std::vector<Row>& rows)
     return checked;
 }
 
+/// Every exact-mode row is leak-free and agrees with exact brute force (no defect); returns how
+/// many there were.
+static std::size_t require_exact_tight(const std::vector<Row>& rows) {
+    std::size_t checked = 0;
+    for (const Row& r : rows) {
+        if (starts_with(r.subject, "exact + ")) {
+            CAPTURE(r.case_name, r.subject, r.failures, r.note);
+            CHECK(r.failures == 0);
+            CHECK_FALSE(r.defect);
+            ++checked;
+        }
+    }
+    return checked;
+}
+
 static rtlab::stab::Selection watertight_robust_only() {
     rtlab::stab::Selection sel;
     sel.methods = {"watertight"};
@@ -168,8 +183,25 @@ TEST_CASE("stability watertight: watertight + robust never leaks on any structur
 TEST_CASE("stability watertight, every method, structure and traversal", "[.stability-full]") {
     const std::vector<Row> rows = rtlab::stab::run_watertight({});
     log_failures(rows);
-    REQUIRE(rows.size() == 4 * 2 * rtlab::stab::leak_case_specs().size());
+    REQUIRE(rows.size() == (4 * 2 + 1) * rtlab::stab::leak_case_specs().size());
     CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
+    CHECK(require_exact_tight(rows) == rtlab::stab::leak_case_specs().size());
+}
+
+TEST_CASE("stability: exact mode never leaks and equals exact brute force on every structure",
+          "[stability]") {
+    rtlab::stab::Options opt;
+    opt.rays = 600;
+    rtlab::stab::Selection sel;
+    sel.methods = {"exact"};
+    using Run = std::vector<Row> (*)(const rtlab::stab::Options&, const rtlab::stab::Selection&);
+    for (const Run run : {Run{&rtlab::stab::run_watertight}, Run{&rtlab::stab::run_adversarial},
+                          Run{&rtlab::stab::run_intgrid}}) {
+        const std::vector<Row> rows = run(opt, sel);
+        log_failures(rows);
+        REQUIRE(rows.size() == rtlab::stab::leak_case_specs().size());
+        CHECK(require_exact_tight(rows) == rows.size());
+    }
 }
 
 TEST_CASE("stability adversarial: rays at each structure's own planes never leak robust",
@@ -183,8 +215,9 @@ TEST_CASE("stability adversarial: rays at each structure's own planes never leak
 TEST_CASE("stability adversarial, every method, structure and traversal", "[.stability-full]") {
     const std::vector<Row> rows = rtlab::stab::run_adversarial({});
     log_failures(rows);
-    REQUIRE(rows.size() == 4 * 2 * rtlab::stab::leak_case_specs().size());
+    REQUIRE(rows.size() == (4 * 2 + 1) * rtlab::stab::leak_case_specs().size());
     CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
+    CHECK(require_exact_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 TEST_CASE("stability adversarial: rays are deterministic, start in the kernel and aim at planes",
@@ -412,8 +445,9 @@ TEST_CASE("stability intgrid: lattice rays never leak with watertight + robust",
 TEST_CASE("stability intgrid, every method, structure and traversal", "[.stability-full]") {
     const std::vector<Row> rows = rtlab::stab::run_intgrid({});
     log_failures(rows);
-    REQUIRE(rows.size() == 4 * 2 * rtlab::stab::leak_case_specs().size());
+    REQUIRE(rows.size() == (4 * 2 + 1) * rtlab::stab::leak_case_specs().size());
     CHECK(require_watertight_robust_tight(rows) == rtlab::stab::leak_case_specs().size());
+    CHECK(require_exact_tight(rows) == rtlab::stab::leak_case_specs().size());
 }
 
 /// Invalid rays never traverse; robust degenerate rays agree with the box-free loop.
