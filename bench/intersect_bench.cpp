@@ -191,9 +191,7 @@ void register_kind(std::string_view prim, const ForEach& for_each, bool has_edge
 
 void rtlab::bench::register_intersect_benchmarks() {
     register_kind<Triangle<float>, xcheck::triangle_bench_cases>(
-        "triangle",
-        [](auto tag, const auto& f) { for_each_triangle_method<typename decltype(tag)::type>(f); },
-        true);
+        "triangle", xcheck::for_each_checked_triangle, true);
     register_kind<Polygon<float>, xcheck::polygon_bench_cases>(
         "polygon",
         [](auto tag, const auto& f) { for_each_polygon_method<typename decltype(tag)::type>(f); },

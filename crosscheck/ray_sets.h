@@ -13,6 +13,8 @@
 #include "intersect/implicit/torus.h"
 #include "intersect/polygon/polygon.h"
 #include "intersect/sphere/sphere.h"
+#include "intersect/triangle/exact_hit.h"
+#include "intersect/triangle/methods.h"
 #include "intersect/triangle/triangle.h"
 
 #include <array>
@@ -20,6 +22,7 @@
 #include <cstdint>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -123,6 +126,17 @@ inline Rayf push_far(Rng& rng, Rayf r) {
 /// Triangles of the closed perturbed sphere mesh of the triangle check (closest_of_all); sets
 /// random (outside, some miss), edge, grazing, far; n rays per set.
 BenchCases<Triangle<float>> triangle_bench_cases(std::size_t n, std::uint64_t seed);
+
+/// Visits the triangle methods of precision T (for_each(std::type_identity<T>{}, visitor), as
+/// run_wanted wants), and in float also the certified test of exact mode, "exact"
+/// (intersect/triangle/exact_hit.h): the methods the cross-check and its benchmarks measure.
+inline constexpr auto for_each_checked_triangle = [](auto tag, const auto& f) {
+    using T = typename decltype(tag)::type;
+    for_each_triangle_method<T>(f);
+    if constexpr (std::is_same_v<T, float>) {
+        f.template operator()<CertifiedTriangle>();
+    }
+};
 /// The polygon check's polygons; sets random, edge, grazing, far; n rays per set.
 BenchCases<Polygon<float>> polygon_bench_cases(std::size_t n, std::uint64_t seed);
 /// The AABB check's boxes; sets random, edge, grazing, far; n rays per set.

@@ -14,6 +14,7 @@
 //   u (weight of p1) and v (weight of p2) close to nearest.
 // Preconditions: finite vertices, a finite origin and direction, tmin and tmax not NaN.
 
+#include "intersect/method.h"
 #include "intersect/ray.h"
 #include "intersect/triangle/triangle.h"
 #include "intersect/vec.h"
@@ -21,6 +22,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string_view>
 
 namespace rtlab {
 
@@ -209,5 +212,19 @@ inline bool exact_less(const Rayf& ray,
     const int c = exact_compare_t(ray, ta, tb);
     return c != 0 ? c < 0 : id_a < id_b;
 }
+
+/// The certified test as a float triangle method ("exact"), so the method cross-check measures it
+/// beside the float methods; exact mode (trace/exact_query.h) adds the exact closest-hit order.
+struct CertifiedTriangle : VertexTriangleMethod<float>, MethodDefaults<CertifiedTriangle> {
+    static constexpr std::string_view name = "exact";
+
+    /// The certified hit with t in [ray.tmin, ray.tmax], or nullopt.
+    static std::optional<PrimHit<float>> intersect(const Prepared& p, const Rayf& ray) {
+        const ExactHit h = exact_intersect(ray, p.p0, p.p1, p.p2);
+        return h.hit ? std::optional(PrimHit<float>{h.t, h.u, h.v}) : std::nullopt;
+    }
+};
+
+static_assert(IntersectionMethod<CertifiedTriangle>);
 
 }  // namespace rtlab
