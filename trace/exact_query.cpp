@@ -185,10 +185,6 @@ void for_rays(const AnyAccel& a,
 
 }  // namespace
 
-std::optional<std::string> exact_refusal(const AnyAccel&) {
-    return std::nullopt;
-}
-
 std::pair<std::vector<Trianglef>, std::vector<std::uint32_t>> exact_slots(
     const AnyAccel& a, std::span<const Trianglef> tris, std::span<const std::uint32_t> ids) {
     std::pair<std::vector<Trianglef>, std::vector<std::uint32_t>> out;

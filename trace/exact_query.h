@@ -14,9 +14,7 @@
 #include "intersect/triangle/triangle.h"
 
 #include <cstdint>
-#include <optional>
 #include <span>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -37,10 +35,6 @@ struct ExactCounts {
         return *this;
     }
 };
-
-/// Why structure `a` cannot serve the exact query, or nullopt when its robust traversal offers
-/// every triangle an exact ray touches.
-std::optional<std::string> exact_refusal(const AnyAccel& a);
 
 /// The triangles of an exact query: tris[i] is primitive i of the structure, ids[i] its global id
 /// (the id hits report and ties are broken by). For a structure that hands out whole leaves
