@@ -33,7 +33,7 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
     opt.rays = test::oracle_rays();
     opt.seed = 1;
     const std::vector<xcheck::Row> rows = xcheck::check_triangles(opt);
-    REQUIRE(rows.size() == 8);  // 4 methods x 2 precisions, set "all"
+    REQUIRE(rows.size() == 9);  // 4 methods x 2 precisions and the certified test, set "all"
     const auto by_key = rows_by_key(rows);
 
     // Disagreement rate (false hits + false misses over all rays), measured with seed 1:
@@ -42,10 +42,15 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
     //   20,000 rays: the same within +-0.05%. Bounds leave about 2x margin for the smaller
     //   sanitizer runs; a zero measurement gets the floor 0.1%.
     const std::map<std::string, double> max_disagreement{
-        {"moller_trumbore/float", 0.02}, {"moller_trumbore/double", 0.01},
-        {"badouel/float", 0.02},         {"badouel/double", 0.001},
-        {"segura_feito/float", 0.001},   {"segura_feito/double", 0.005},
-        {"watertight/float", 0.001},     {"watertight/double", 0.001},
+        {"moller_trumbore/float", 0.02},
+        {"moller_trumbore/double", 0.01},
+        {"badouel/float", 0.02},
+        {"badouel/double", 0.001},
+        {"segura_feito/float", 0.001},
+        {"segura_feito/double", 0.005},
+        {"watertight/float", 0.001},
+        {"watertight/double", 0.001},
+        {"exact/float", 0.0},
     };
     // Relative t error where both hit. Watertight measured max 1.5e-5 float, 9.5e-15 double;
     // every method's median is 4e-8..6e-8 float, 1.3e-16..1.5e-16 double. The float maxima of
@@ -55,6 +60,9 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
     const auto max_t_err = [](const xcheck::Row& r) {
         if (r.precision == "double") {
             return 1e-12;
+        }
+        if (r.method == "exact") {
+            return 0x1.0p-24 * (1 + 1e-9);  // half an ulp: t is the nearest float to the exact t
         }
         return r.method == "watertight" ? 1e-4 : 2.5;
     };
@@ -84,6 +92,7 @@ TEST_CASE("triangle methods against the exact CGAL oracle", "[intersect][triangl
     }
     CHECK(by_key.at("watertight/float").wrong_t == 0);
     CHECK(by_key.at("watertight/double").wrong_t == 0);
+    CHECK(by_key.at("exact/float").agree == opt.rays);
 }
 
 TEST_CASE("triangle cross-check is reproducible", "[intersect][triangle][oracle]") {
@@ -126,6 +135,7 @@ TEST_CASE("triangle cross-check rejects unknown methods", "[intersect][triangle]
     opt.rays = 6;
     opt.methods = {"moller_trumbore", "nope"};
     CHECK_THROWS_AS(xcheck::check_triangles(opt), std::invalid_argument);
-    CHECK(xcheck::triangle_methods() ==
-          std::vector<std::string>{"moller_trumbore", "badouel", "segura_feito", "watertight"});
+    CHECK(xcheck::triangle_methods() == std::vector<std::string>{"moller_trumbore", "badouel",
+                                                                 "segura_feito", "watertight",
+                                                                 "exact"});
 }
