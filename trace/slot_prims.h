@@ -12,19 +12,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 namespace rtlab {
 
 namespace detail {
 struct NoLanes {};
+/// M::Lanes for a method with lanes, else NoLanes, as a std::type_identity.
 template <class M>
-struct LanesOf {
-    using type = NoLanes;
-};
-template <HasLanes M>
-struct LanesOf<M> {
-    using type = typename M::Lanes;
-};
+auto lanes_of() {
+    if constexpr (HasLanes<M>) {
+        return std::type_identity<typename M::Lanes>{};
+    } else {
+        return std::type_identity<NoLanes>{};
+    }
+}
 }  // namespace detail
 
 /// M's prepared primitives by slot and the id of each slot (the caller's, e.g. a global
@@ -32,9 +34,11 @@ struct LanesOf<M> {
 /// group s / lane_count.
 template <class M>
 struct SlotPrims {
-    LargeVector<typename M::Prepared> prims;               ///< slot s's primitive
-    LargeVector<std::uint32_t> ids;                        ///< slot s's id
-    LargeVector<typename detail::LanesOf<M>::type> lanes;  ///< HasLanes: the lane groups
+    using Lanes = typename decltype(detail::lanes_of<M>())::type;
+
+    LargeVector<typename M::Prepared> prims;  ///< slot s's primitive
+    LargeVector<std::uint32_t> ids;           ///< slot s's id
+    LargeVector<Lanes> lanes;                 ///< HasLanes: the lane groups
 
     /// Number of slots.
     std::uint32_t size() const { return static_cast<std::uint32_t>(prims.size()); }
@@ -43,7 +47,7 @@ struct SlotPrims {
     /// Bytes of the primitives and ids.
     std::size_t bytes() const {
         return prims.size() * sizeof(typename M::Prepared) + ids.size() * sizeof(std::uint32_t) +
-               (HasLanes<M> ? lanes.size() * sizeof(typename detail::LanesOf<M>::type) : 0);
+               (HasLanes<M> ? lanes.size() * sizeof(Lanes) : 0);
     }
 };
 
