@@ -89,7 +89,9 @@ Hit closest_one(const A& acc, const ExactTriangles& q, const Rayf& ray, S& stats
     const Trianglef* best_tri = nullptr;
     std::uint32_t best_id = invalid_id;
     const auto test = [&](const Trianglef& t, std::uint32_t id, Rayf& walk) {
-        const ExactHit h = exact_intersect(ray, t.p0, t.p1, t.p2);
+        // Against walk's window, which ends one float past the best hit: a triangle beyond it
+        // cannot tie or beat the best, so its t is not certified for nothing.
+        const ExactHit h = exact_intersect(walk, t.p0, t.p1, t.p2);
         ++c.tests;
         c.fallbacks += h.fallback ? 1 : 0;
         if (!h.hit || id == best_id) {
